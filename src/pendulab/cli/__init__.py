@@ -1,0 +1,100 @@
+"""The ``pendulab`` command line: thin, it parses, calls the library and renders.
+
+Subcommands live in small modules loaded on demand, so ``pendulab --help`` and
+``pendulab period`` never import numba, scipy or matplotlib.
+"""
+from __future__ import annotations
+
+import importlib
+import sys
+
+import click
+
+from ..errors import PendulabError
+
+# command name -> "module:function", relative to this package.
+COMMANDS = {
+    "period": "core:period",
+    "simulate": "core:simulate",
+    "estimate": "core:estimate",
+    "length": "core:length",
+    "gravity": "problems:gravity",
+    "newton": "problems:newton",
+    "fit": "problems:fit",
+    "quadrature": "problems:quadrature",
+    "report": "report:report",
+    "serve": "serve:serve",
+    "approximations": "beyond:approximations",
+    "sweep": "beyond:sweep",
+}
+
+
+class LazyGroup(click.Group):
+    """A group that imports a subcommand's module only when it is needed."""
+
+    def list_commands(self, ctx: click.Context) -> list[str]:
+        return [name for name in COMMANDS if self._load(name) is not None]
+
+    def get_command(self, ctx: click.Context, name: str) -> click.Command | None:
+        return self._load(name)
+
+    @staticmethod
+    def _load(name: str) -> click.Command | None:
+        target = COMMANDS.get(name)
+        if target is None:
+            return None
+        module, attr = target.split(":")
+        try:
+            mod = importlib.import_module(f"{__name__}.{module}")
+        except ModuleNotFoundError as exc:  # a command whose module is not written yet
+            if exc.name == f"{__name__}.{module}":
+                return None
+            raise
+        return getattr(mod, attr, None)
+
+
+@click.group(cls=LazyGroup, context_settings={"help_option_names": ["-h", "--help"]})
+@click.version_option(package_name="pendulab")
+def cli() -> None:
+    """pendulab: the nonlinear simple pendulum and the numerical methods taught with it.
+
+    Exact periods by the arithmetic-geometric mean, the coursework's Taylor
+    simulation, the period recovered from a simulation, and the report.
+    Every command takes --json for one machine-readable JSON document on stdout.
+    """
+
+
+def main(argv: list[str] | None = None) -> int:
+    """Entry point: bad input becomes one line on stderr and exit status 2."""
+    try:
+        cli.main(args=argv, prog_name="pendulab", standalone_mode=False)
+    except click.exceptions.Exit as exc:
+        return exc.exit_code
+    except click.exceptions.Abort:
+        click.echo("pendulab: aborted", err=True)
+        return 130
+    except click.ClickException as exc:
+        where = f"pendulab {exc.ctx.info_name}" if getattr(exc, "ctx", None) and exc.ctx.parent else "pendulab"
+        msg = " ".join(exc.format_message().split())
+        click.echo(f"{where}: error: {msg}", err=True)
+        return 2
+    except PendulabError as exc:
+        click.echo(f"pendulab: error: {_cli_message(exc)}", err=True)
+        return 2
+    except KeyboardInterrupt:
+        click.echo("pendulab: interrupted", err=True)
+        return 130
+    return 0
+
+
+def _cli_message(exc: PendulabError) -> str:
+    """A library error in the CLI's words: argument names become option names."""
+    from ..errors import InputError
+
+    if isinstance(exc, InputError):
+        return f"--{exc.name.replace('_', '-')} = {exc.value!s} is not allowed: must be {exc.allowed}"
+    return " ".join(str(exc).split())
+
+
+if __name__ == "__main__":  # pragma: no cover
+    sys.exit(main())

@@ -1,0 +1,45 @@
+"""Exceptions of pendulab.
+
+Every bad input raises :class:`InputError` (a ``ValueError``) whose message names the
+argument, the value received and the allowed range; every numerical failure raises a
+:class:`NumericalError` subclass with a message that says what to change. The CLI turns
+both into one line on stderr and exit status 2.
+"""
+from __future__ import annotations
+
+
+class PendulabError(ValueError):
+    """Base class of the project's errors."""
+
+
+class InputError(PendulabError):
+    """A value outside its allowed range.
+
+    Parameters
+    ----------
+    name : str
+        The argument's name as the library spells it (``t_max``); the CLI shows it as
+        its option (``--t-max``).
+    value : object
+        The value received.
+    allowed : str
+        The allowed range, in words (``"a finite number > 0"``).
+    """
+
+    def __init__(self, name: str, value: object, allowed: str):
+        self.name = name
+        self.value = value
+        self.allowed = allowed
+        super().__init__(f"{name} = {value!s} is not allowed: must be {allowed}")
+
+
+class NumericalError(PendulabError):
+    """A computation that cannot give the asked-for result (no sign change, no convergence)."""
+
+
+class NoReturnError(NumericalError):
+    """The simulated pendulum does not come back to P = (alpha, 0) within t_max."""
+
+
+class LeftOscillationError(NumericalError):
+    """The discrete pendulum went over the top (|theta| > pi): no period to find."""

@@ -1,0 +1,115 @@
+"""Simulation of the pendulum (2) by the coursework's second-order Taylor algorithm (3), (6).
+
+:func:`simulate` gives a :class:`Trajectory`: the lists ``(t_i, z1_i)`` and
+``(z1_i, z2_i)`` of problem 3. The loop itself is :func:`pendulab._kernels.trajectory`.
+"""
+from __future__ import annotations
+
+from dataclasses import dataclass
+from typing import Any
+
+import numpy as np
+
+from . import _validate as v
+from .cases import G
+from .errors import InputError
+
+#: Integrators by name: (kernel code, order). ``taylor2`` is the coursework's (3).
+METHODS: dict[str, tuple[int, int]] = {"taylor2": (0, 2)}
+#: The largest trajectory kept in memory (points); longer runs stream (crossing.py).
+MAX_POINTS = 50_000_000
+
+
+def method_code(method: str) -> tuple[int, int]:
+    """The kernel code and order of the integrator named ``method``."""
+    try:
+        return METHODS[method]
+    except KeyError:
+        raise InputError("method", repr(method), "one of " + ", ".join(METHODS)) from None
+
+
+def step_count(t0: float, t_max: float, step: float) -> int:
+    """``N = Round((t_max - t0)/h)``, equation (6) (round half to even, like Mathematica's Round)."""
+    return int(round((t_max - t0) / step))
+
+
+@dataclass(frozen=True)
+class Trajectory:
+    """The points ``Z_j = (z1_j, z2_j)`` at times ``t_j = t0 + j h``, ``j = 0..N``.
+
+    Attributes
+    ----------
+    t, theta, omega : ndarray, shape (N+1,)
+        ``t_j``, ``z1_j ~ theta(t_j)`` and ``z2_j ~ theta'(t_j)``.
+    length, amplitude, g, step, t0 : float
+        The inputs.
+    method : str
+        The integrator's name.
+    """
+
+    t: np.ndarray
+    theta: np.ndarray
+    omega: np.ndarray
+    length: float
+    amplitude: float
+    g: float
+    step: float
+    t0: float
+    method: str = "taylor2"
+
+    @property
+    def n_steps(self) -> int:
+        return len(self.t) - 1
+
+    def time_series(self) -> np.ndarray:
+        """List (i) of problem 3: the points ``(t_i, z1_i)``, shape (N+1, 2)."""
+        return np.column_stack([self.t, self.theta])
+
+    def phase_points(self) -> np.ndarray:
+        """List (ii) of problem 3: the points ``(z1_i, z2_i)``, shape (N+1, 2)."""
+        return np.column_stack([self.theta, self.omega])
+
+
+def simulate(
+    length: Any,
+    amplitude: Any,
+    step: Any,
+    t_max: Any,
+    t0: Any = 0.0,
+    g: Any = G,
+    method: str = "taylor2",
+) -> Trajectory:
+    """Simulate ``theta'' = c sin(theta)``, ``c = -g/l`` (2), from rest at ``alpha``.
+
+    Parameters
+    ----------
+    length : float
+        ``l`` > 0, m.
+    amplitude : float
+        ``alpha`` in ``[0, pi)``, rad.
+    step : float
+        ``h``, with ``0 < h < t_max - t0``.
+    t_max, t0 : float
+        The interval ``[t0, t_max]``; ``N = Round((t_max - t0)/h)`` steps (6).
+    g : float
+        m/s^2.
+    method : str
+        ``"taylor2"``: the coursework's algorithm (3).
+
+    Returns
+    -------
+    Trajectory
+    """
+    length = v.positive("length", length)
+    alpha = v.amplitude("amplitude", amplitude)
+    g = v.positive("g", g)
+    t0, t_max, step = v.time_span(t0, t_max, step)
+    code, order = method_code(method)
+    n = step_count(t0, t_max, step)
+    if n + 1 > MAX_POINTS:
+        raise InputError("step", step, f">= (t_max - t0)/{MAX_POINTS - 1:.0e} to keep at most {MAX_POINTS:.0e} points")
+    from ._kernels import trajectory
+
+    z1, z2 = trajectory(code, order, alpha, -g / length, step, n)
+    t = t0 + step * np.arange(n + 1)
+    return Trajectory(t, z1, z2, length, alpha, g, step, t0, method)
