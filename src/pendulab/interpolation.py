@@ -1,0 +1,88 @@
+"""Polynomial interpolation in Newton's form, and the inverse interpolation of problem 3(d).
+
+The period is the time at which ``theta'`` vanishes: interpolating the table
+``(z2_j, t_j)`` (inverse interpolation) by a cubic ``p`` gives ``T ~ p(0)``.
+
+References
+----------
+.. [1] R. L. Burden, J. D. Faires, *Numerical Analysis*, 9th ed., sections 3.1 (error
+   formula, Theorem 3.3) and 3.3 (divided differences, Newton's form).
+"""
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+
+
+def divided_differences(x: np.ndarray, y: np.ndarray) -> np.ndarray:
+    """Newton coefficients ``f[x0], f[x0,x1], ..., f[x0..xn]`` of the table ``(x, y)``.
+
+    The standard in-place table (Burden-Faires, Algorithm 3.2); ``x`` must be distinct.
+    """
+    x = np.asarray(x, dtype=float)
+    coef = np.array(y, dtype=float)
+    if len(np.unique(x)) != len(x):
+        raise ValueError("interpolation nodes must be distinct")
+    for k in range(1, len(x)):
+        coef[k:] = (coef[k:] - coef[k - 1 : -1]) / (x[k:] - x[: len(x) - k])
+    return coef
+
+
+def newton_eval(coef: np.ndarray, x_nodes: np.ndarray, x: float | np.ndarray) -> float | np.ndarray:
+    """Evaluate ``p(x) = c0 + c1 (x - x0) + ... + cn (x - x0)...(x - x_{n-1})`` by Horner's rule."""
+    p = np.full_like(np.asarray(x, dtype=float), coef[-1])
+    for c, xn in zip(coef[-2::-1], x_nodes[len(coef) - 2 :: -1]):
+        p = p * (x - xn) + c
+    return p if np.ndim(p) else float(p)
+
+
+@dataclass(frozen=True)
+class InverseInterpolation:
+    """``p`` interpolating ``(z2_j, t_j)``, ``j = 0..3``, its value ``p(0)`` and error estimate.
+
+    Attributes
+    ----------
+    z2, t : ndarray, shape (4,)
+        The table of problem 3(d): ``z2`` changes sign among the nodes.
+    coefficients : ndarray, shape (4,)
+        Newton's divided differences ``t[z2_0], ..., t[z2_0..z2_3]``.
+    value : float
+        ``p(0)``, the estimate of the time at which ``theta' = 0``.
+    fifth : tuple of float
+        The extra node ``(z2_4, t_4)`` used for the error estimate.
+    fourth_difference : float
+        ``t[z2_0, .., z2_4]``, which approximates ``f^(4)(xi)/4!`` (spec footnote 5).
+    error_estimate : float
+        ``t[z2_0..z2_4] * prod_j (0 - z2_j)``: the interpolation error formula with the
+        unknown derivative replaced by the 5-node divided difference.
+    """
+
+    z2: np.ndarray
+    t: np.ndarray
+    coefficients: np.ndarray
+    value: float
+    fifth: tuple[float, float]
+    fourth_difference: float
+    error_estimate: float
+
+
+def inverse_cubic(z2: np.ndarray, t: np.ndarray, fifth: tuple[float, float]) -> InverseInterpolation:
+    """Inverse cubic interpolation ``T ~ p(0)`` through four points, problem 3(d).
+
+    Parameters
+    ----------
+    z2, t : array_like, shape (4,)
+        ``theta'`` values (distinct) and their times.
+    fifth : (float, float)
+        A fifth point ``(z2, t)`` of the same simulation, for the error estimate:
+        ``e(0) = f^(4)(xi)/4! * prod(0 - z2_j) ~ f[z2_0, .., z2_4] * prod(0 - z2_j)``.
+    """
+    z2 = np.asarray(z2, dtype=float)
+    t = np.asarray(t, dtype=float)
+    coef = divided_differences(z2, t)
+    value = newton_eval(coef, z2, 0.0)
+    five = divided_differences(np.append(z2, fifth[0]), np.append(t, fifth[1]))
+    fourth = float(five[-1])
+    error = fourth * float(np.prod(0.0 - z2))
+    return InverseInterpolation(z2, t, coef, value, (float(fifth[0]), float(fifth[1])), fourth, error)
