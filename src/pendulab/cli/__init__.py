@@ -66,23 +66,30 @@ def cli() -> None:
 
 def main(argv: list[str] | None = None) -> int:
     """Entry point: bad input becomes one line on stderr and exit status 2."""
+    args = sys.argv[1:] if argv is None else list(argv)
+    sub = next((a for a in args if not a.startswith("-")), None)
+    where = f"pendulab {sub}" if sub in COMMANDS else "pendulab"
     try:
-        cli.main(args=argv, prog_name="pendulab", standalone_mode=False)
+        cli.main(args=args, prog_name="pendulab", standalone_mode=False)
     except click.exceptions.Exit as exc:
         return exc.exit_code
     except click.exceptions.Abort:
-        click.echo("pendulab: aborted", err=True)
+        click.echo(f"{where}: aborted", err=True)
         return 130
+    except click.BadParameter as exc:
+        # Our parameter types already name the option, the value and the range.
+        opts = tuple(exc.param.opts) if exc.param is not None else ()
+        msg = exc.message if opts and exc.message.startswith(opts) else exc.format_message()
+        click.echo(f"{where}: error: {' '.join(msg.split())}", err=True)
+        return 2
     except click.ClickException as exc:
-        where = f"pendulab {exc.ctx.info_name}" if getattr(exc, "ctx", None) and exc.ctx.parent else "pendulab"
-        msg = " ".join(exc.format_message().split())
-        click.echo(f"{where}: error: {msg}", err=True)
+        click.echo(f"{where}: error: {' '.join(exc.format_message().split())}", err=True)
         return 2
     except PendulabError as exc:
-        click.echo(f"pendulab: error: {_cli_message(exc)}", err=True)
+        click.echo(f"{where}: error: {_cli_message(exc)}", err=True)
         return 2
     except KeyboardInterrupt:
-        click.echo("pendulab: interrupted", err=True)
+        click.echo(f"{where}: interrupted", err=True)
         return 130
     return 0
 

@@ -1,0 +1,186 @@
+"""Commands of the foundation: ``period``, ``simulate``, ``estimate``, ``length``."""
+from __future__ import annotations
+
+import click
+
+from ..cases import EXAMPLE_GROUP, FIGURE3_STEP, FIGURE3_T_MAX, PROBLEM3_AMPLITUDE, PROBLEM3_STEPS
+from ._common import ANGLE, FLOAT, POSITIVE, POSITIVE_LIST, emit_json, fmt, g_option, json_option
+
+_LENGTH_HELP = "Pendulum length l, m (> 0)."
+_ANGLE_HELP = "Amplitude alpha in [0, pi): 0.785, pi/4, 4pi/5, 45deg, 45°."
+
+
+def _method_option(f):
+    return click.option(
+        "--method", default="taylor2", show_default=True,
+        help="Integrator: taylor2 is the coursework's algorithm (3).",
+    )(f)
+
+
+@click.command()
+@click.option("-l", "--length", type=POSITIVE, required=True, help=_LENGTH_HELP)
+@click.option("-a", "--amplitude", type=ANGLE, required=True, help=_ANGLE_HELP)
+@click.option("--iterations", type=click.IntRange(0, 1000), default=None,
+              help="Fixed AGM iterations (7: the coursework's T^ of (8)); default: to convergence.")
+@click.option("--digits", type=click.IntRange(1, 10000), default=None,
+              help="Also give the period to this many significant digits (mpmath), all correct.")
+@g_option
+@json_option
+def period(length, amplitude, iterations, digits, g, as_json):
+    """The exact period by the arithmetic-geometric mean, equations (7)-(8)."""
+    from ..period import agm_period, period_digits, small_angle_period
+
+    t = agm_period(float(length), float(amplitude), float(g), iterations=iterations)
+    t0 = small_angle_period(float(length), float(g))
+    data = {
+        "length": float(length),
+        "amplitude": float(amplitude),
+        "g": float(g),
+        "iterations": iterations,
+        "period": t,
+        "small_angle_period": t0,
+    }
+    if digits is not None:
+        data["period_digits"] = period_digits(length, amplitude, g, digits)
+    if as_json:
+        emit_json(data)
+        return
+    how = "converged" if iterations is None else f"{iterations} iterations"
+    click.echo(f"period (AGM, {how})  T  = {t!r} s")
+    click.echo(f"small-angle period      T0 = {t0!r} s")
+    if digits is not None:
+        click.echo(f"period, {digits} digits  T  = {data['period_digits']} s")
+
+
+@click.command()
+@click.option("-l", "--length", type=POSITIVE, default="1", show_default=True, help=_LENGTH_HELP)
+@click.option("-a", "--amplitude", type=ANGLE, default="pi/4", show_default=True, help=_ANGLE_HELP)
+@click.option("--step", type=POSITIVE, default=str(FIGURE3_STEP), show_default=True, help="Step h, s.")
+@click.option("--t-max", "t_max", type=FLOAT, default=str(FIGURE3_T_MAX), show_default=True, help="End time, s.")
+@click.option("--t0", type=FLOAT, default="0", show_default=True, help="Start time, s.")
+@click.option("--digits", type=click.IntRange(1, 17), default=12, show_default=True,
+              help="Significant digits in the table.")
+@click.option("--csv", "as_csv", is_flag=True, help="Print CSV (t,theta,omega) at full precision.")
+@click.option("--plot", type=click.Path(dir_okay=False), help="Write Figure 1 (t_j, z1_j) to this PNG/SVG/PDF.")
+@click.option("--phase", type=click.Path(dir_okay=False), help="Write Figure 2 (phase points, P circled).")
+@_method_option
+@g_option
+@json_option
+def simulate(length, amplitude, step, t_max, t0, digits, as_csv, plot, phase, method, g, as_json):
+    """Simulate the pendulum by the Taylor algorithm (3): the table t, z1, z2."""
+    from .._atomic import check_writable
+    from ..taylor import simulate as run
+
+    for name, path in (("plot", plot), ("phase", phase)):
+        if path:
+            check_writable(name, path)
+    tr = run(float(length), float(amplitude), float(step), t_max, t0, float(g), method)
+    if plot:
+        _save(lambda ax: _plots().time_series(ax, tr), plot)
+    if phase:
+        _save(lambda ax: _plots().phase_portrait(ax, tr), phase)
+    if as_json:
+        emit_json({"length": tr.length, "amplitude": tr.amplitude, "g": tr.g, "step": tr.step,
+                   "method": method, "n_steps": tr.n_steps, "t": tr.t, "theta": tr.theta, "omega": tr.omega})
+    elif as_csv:
+        lines = ["t,theta,omega"] + [f"{a!r},{b!r},{c!r}" for a, b, c in zip(tr.t.tolist(), tr.theta.tolist(), tr.omega.tolist())]
+        click.echo("\n".join(lines))
+    else:
+        w = digits + 8
+        lines = [f"{'t_i':>{w}} {'z1_i':>{w}} {'z2_i':>{w}}"]
+        lines += [f"{fmt(a, digits):>{w}} {fmt(b, digits):>{w}} {fmt(c, digits):>{w}}"
+                  for a, b, c in zip(tr.t.tolist(), tr.theta.tolist(), tr.omega.tolist())]
+        click.echo("\n".join(lines))
+
+
+def _plots():
+    from ..plots import simulation
+
+    return simulation
+
+
+def _save(draw, path) -> None:
+    """Draw on a fresh figure and save it atomically (format from the extension)."""
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    from .._atomic import save_figure
+
+    fig, ax = plt.subplots(figsize=(6.4, 4.2), layout="constrained")
+    try:
+        draw(ax)
+        save_figure(fig, path, dpi=150)
+    finally:
+        plt.close(fig)
+
+
+@click.command()
+@click.option("-l", "--length", type=POSITIVE, default=None,
+              help="Pendulum length l, m. Default: the example group's, 2.0800838231.")
+@click.option("-a", "--amplitude", type=ANGLE, default=PROBLEM3_AMPLITUDE.text, show_default=True, help=_ANGLE_HELP)
+@click.option("--step", "steps", type=POSITIVE_LIST, default=",".join(f"{s:g}" for s in PROBLEM3_STEPS),
+              show_default=True, help="Comma-separated steps h.")
+@click.option("--t-max", "t_max", type=FLOAT, default=None,
+              help="End of the simulation; default 1.5 T + 4h from the exact period (8).")
+@_method_option
+@g_option
+@json_option
+def estimate(length, amplitude, steps, t_max, method, g, as_json):
+    """The period from simulations (problem 3(c)-(d)): bracket, linear and cubic estimates."""
+    from ..crossing import estimate_period, observed_orders
+    from ..group import group_length
+    from ..period import agm_period
+
+    length = float(length) if length is not None else group_length(EXAMPLE_GROUP).length
+    rows = [estimate_period(length, float(amplitude), h, t_max, 0.0, float(g), method) for h in steps]
+    exact = agm_period(length, float(amplitude), float(g))
+    lin_err = [abs(r.linear - exact) for r in rows]
+    cub_err = [abs(r.cubic - exact) for r in rows]
+    lin_ord = observed_orders(steps, lin_err)
+    cub_ord = observed_orders(steps, cub_err)
+    if as_json:
+        emit_json({
+            "length": length, "amplitude": float(amplitude), "g": float(g), "method": method, "exact": exact,
+            "rows": [{"step": r.step, "j": r.j, "bracket": list(r.bracket), "linear": r.linear,
+                      "cubic": r.cubic, "cubic_error_estimate": r.cubic_error_estimate,
+                      "linear_error": le, "cubic_error": ce, "linear_order": lo, "cubic_order": co}
+                     for r, le, ce, lo, co in zip(rows, lin_err, cub_err, lin_ord, cub_ord)],
+        })
+        return
+    click.echo(f"l = {length!r} m, alpha = {float(amplitude)!r} rad, method {method}")
+    click.echo(f"exact period (AGM, (8))  T = {exact!r} s")
+    head = f"{'h':>8} {'bracket [t_j, t_j+1]':>25} {'linear':>18} {'cubic p(0)':>18} {'interp. err. est.':>17} {'|linear - T|':>12} {'|cubic - T|':>12} {'order':>6}"
+    click.echo(head)
+    for r, le, ce, co in zip(rows, lin_err, cub_err, cub_ord):
+        br = f"[{r.bracket[0]:.10g}, {r.bracket[1]:.10g}]"
+        order = f"{co:6.2f}" if co is not None else f"{'':>6}"
+        click.echo(f"{r.step:>8g} {br:>25} {r.linear:>18.15g} {r.cubic:>18.15g} {r.cubic_error_estimate:>17.3e} "
+                   f"{le:>12.3e} {ce:>12.3e} {order}")
+
+
+@click.command()
+@click.argument("numbers", nargs=-1, required=True)
+@json_option
+def length(numbers, as_json):
+    """The pendulum length of a group of students, problem 3(b): 262 407 634 -> 2.0800838231."""
+    from ..errors import InputError
+    from ..group import group_length
+
+    nums = []
+    for s in numbers:
+        for part in s.split(","):
+            if not part.strip():
+                continue
+            if not part.strip().isdigit():
+                raise InputError("students", repr(part), "non-negative integers (student numbers)")
+            nums.append(int(part))
+    if not nums:
+        raise InputError("students", repr(" ".join(numbers)), "at least one student number")
+    res = group_length(nums)
+    if as_json:
+        emit_json({"numbers": list(res.numbers), "sum": res.total, "digits": res.digits,
+                   "length": res.length, "length_text": res.text})
+        return
+    click.echo(res.text)
