@@ -1,0 +1,46 @@
+"""Inputs as written: angles and numbers parsed exactly."""
+import math
+from fractions import Fraction
+
+import mpmath
+import pytest
+
+from pendulab.errors import InputError
+from pendulab.exact import parse_angle, parse_number
+
+
+@pytest.mark.parametrize(
+    "text, value",
+    [
+        ("0.785", 0.785),
+        ("pi/4", math.pi / 4),
+        ("4pi/5", 4 * math.pi / 5),
+        ("4*pi/5", 4 * math.pi / 5),
+        ("45deg", math.pi / 4),
+        ("45°", math.pi / 4),
+        ("180 deg", math.pi),
+        ("pi", math.pi),
+        ("0.5pi", math.pi / 2),
+        ("1/3", 1 / 3),
+    ],
+)
+def test_angle_forms(text, value):
+    assert float(parse_angle("amplitude", text)) == pytest.approx(value, rel=1e-15)
+
+
+def test_angles_are_correctly_rounded():
+    # 4pi/5 is the double nearest to the true 4 pi/5 (mpmath at 50 digits).
+    with mpmath.workdps(50):
+        assert float(parse_angle("a", "4pi/5")) == float(4 * mpmath.pi / 5)
+        assert float(parse_angle("a", "1deg")) == float(mpmath.pi / 180)
+
+
+def test_numbers_are_exact():
+    assert parse_number("l", "2.0800838231").coef == Fraction(20800838231, 10**10)
+    assert parse_number("g", "9.80665").mpf(30) == mpmath.mpf("9.80665")
+
+
+@pytest.mark.parametrize("text", ["", "abc", "pi/0", "4pi/", "45rad/deg", "1/0", "--1"])
+def test_malformed(text):
+    with pytest.raises(InputError):
+        parse_angle("amplitude", text)

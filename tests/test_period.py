@@ -1,0 +1,140 @@
+"""The exact period, (7)-(8): against mpmath's elliptic K, scipy's ellipkm1, and itself."""
+import math
+
+import mpmath
+import numpy as np
+import pytest
+
+from pendulab.errors import InputError
+from pendulab.period import (
+    agm_iterations,
+    agm_period,
+    fixed_iterations_error,
+    fixed_iterations_limit,
+    period_digits,
+    period_mp,
+    small_angle_period,
+)
+
+G = 9.80665
+# Amplitudes on a uniform grid and ever closer to pi, down to 1e-12 away (issue 2).
+GRID = np.concatenate([np.linspace(0.0, 3.1, 63), math.pi - np.logspace(-1, -12, 23)])
+
+
+def reference_period(length, alpha, dps=50):
+    """T = 4 sqrt(l/g) K(m), m = sin^2(alpha/2) (DLMF 19.2.8), in mpmath from alpha's exact double."""
+    with mpmath.workdps(dps):
+        m = mpmath.sin(mpmath.mpf(alpha) / 2) ** 2
+        return 4 * mpmath.sqrt(mpmath.mpf(length) / mpmath.mpf(G)) * mpmath.ellipk(m)
+
+
+@pytest.mark.parametrize("alpha", GRID)
+def test_agm_matches_mpmath_ellipk_to_1e15(alpha):
+    ref = reference_period(2.5, alpha)
+    got = agm_period(2.5, alpha)
+    assert abs(got / ref - 1) <= 1e-15
+
+
+def test_vectorised_equals_scalar_and_broadcasts():
+    vec = agm_period(2.5, GRID)
+    assert vec.shape == GRID.shape
+    assert np.array_equal(vec, [agm_period(2.5, a) for a in GRID])
+    lengths = np.array([[0.5], [3.5]])
+    both = agm_period(lengths, GRID[:5])
+    assert both.shape == (2, 5)
+    assert both[1, 3] == agm_period(3.5, GRID[3])
+
+
+def test_agm_matches_scipy_ellipkm1():
+    # scipy's ellipkm1(p) = K(1 - p) takes p = cos^2(alpha/2) without cancellation.
+    from scipy.special import ellipkm1
+
+    ref = 4 * np.sqrt(2.5 / G) * ellipkm1(np.cos(GRID / 2) ** 2)
+    assert np.allclose(agm_period(2.5, GRID), ref, rtol=5e-15, atol=0)
+
+
+def test_scipy_ellipk_loses_digits_near_pi():
+    # The reason the AGM does not route through ellipk(m): m = sin^2(alpha/2) rounds to 1.
+    from scipy.special import ellipk
+
+    alpha = math.pi - 1e-9
+    naive = 4 * math.sqrt(1 / G) * ellipk(math.sin(alpha / 2) ** 2)
+    ref = float(reference_period(1, alpha))
+    assert abs(naive / ref - 1) > 1e-9
+    assert abs(agm_period(1, alpha) / ref - 1) <= 1e-15
+
+
+def test_small_angle_limit_and_formula():
+    assert agm_period(1.0, 0.0) == small_angle_period(1.0) == pytest.approx(2 * math.pi * math.sqrt(1 / G), rel=1e-16)
+    # T ~ T0 (1 + alpha^2/16) for small alpha (series of K, DLMF 19.5.1).
+    a = 1e-3
+    assert agm_period(1.0, a) / small_angle_period(1.0) == pytest.approx(1 + a * a / 16, rel=1e-12)
+
+
+def test_seven_iterations_reproduce_spec_and_are_exact_for_moderate_amplitudes():
+    for alpha in np.linspace(0, 3.14, 50):
+        assert agm_period(1.0, alpha, iterations=7) == agm_period(1.0, alpha)
+
+
+def test_fixed_iterations_limit_brackets_the_truncation_error():
+    limit = fixed_iterations_limit(7)
+    assert math.pi - 1e-12 < limit < math.pi
+    # Just below the limit the truncation error of 7 steps is under half an ulp;
+    # just above it, over (measured independently at 80 digits).
+    with mpmath.workdps(80):
+        below = mpmath.pi - (mpmath.pi - mpmath.mpf(limit)) * 3
+        above = mpmath.pi - (mpmath.pi - mpmath.mpf(limit)) / 3
+
+        def truncation(alpha):
+            b0 = mpmath.cos(alpha / 2)
+            a, b = mpmath.mpf(1), b0
+            for _ in range(7):
+                a, b = (a + b) / 2, mpmath.sqrt(a * b)
+            return (a + b) / 2 / mpmath.agm(1, b0) - 1
+
+        assert truncation(below) < 2.0**-53 < truncation(above)
+        assert fixed_iterations_error(above, 7) == pytest.approx(truncation(above), rel=1e-6)
+
+
+def test_iterations_needed_grow_near_pi():
+    counts = [agm_iterations(a) for a in (0.0, 1.0, 3.0, math.pi - 1e-12)]
+    assert counts[0] == 0
+    assert counts == sorted(counts)
+    assert counts[-1] <= 10
+
+
+def test_period_digits_every_digit_right():
+    # Reference: l = 7/2, alpha = 4 pi/5 exactly, g = 980665/100000, via ellipk at 80 digits.
+    with mpmath.workdps(80):
+        m = mpmath.sin(2 * mpmath.pi / 5) ** 2
+        ref = 4 * mpmath.sqrt(mpmath.mpf(7) / 2 / (mpmath.mpf(980665) / 100000)) * mpmath.ellipk(m)
+        expected = mpmath.nstr(ref, 40, strip_zeros=False)
+    assert period_digits("3.5", "4pi/5", digits=40) == expected
+
+
+def test_period_digits_takes_inputs_as_written_not_as_doubles():
+    exact = mpmath.mpf(period_digits("3.5", "4pi/5", digits=30))
+    from_double = period_mp(3.5, 4 * math.pi / 5, dps=40)
+    # The double 4pi/5 differs from 4 pi/5 by ~1e-16: the periods differ at that level.
+    assert 1e-18 < abs(exact - from_double) < 1e-14
+
+
+@pytest.mark.parametrize(
+    "kwargs, name",
+    [
+        ({"length": 0, "amplitude": 1}, "length"),
+        ({"length": -1, "amplitude": 1}, "length"),
+        ({"length": float("nan"), "amplitude": 1}, "length"),
+        ({"length": 1, "amplitude": math.pi}, "amplitude"),
+        ({"length": 1, "amplitude": -0.1}, "amplitude"),
+        ({"length": 1, "amplitude": float("inf")}, "amplitude"),
+        ({"length": 1, "amplitude": 1, "g": 0}, "g"),
+        ({"length": 1, "amplitude": 1, "iterations": -1}, "iterations"),
+        ({"length": 1, "amplitude": np.array([0.1, 4.0])}, "amplitude"),
+    ],
+)
+def test_bad_input_names_the_argument(kwargs, name):
+    with pytest.raises(InputError) as err:
+        agm_period(**kwargs)
+    assert err.value.name == name
+    assert name in str(err.value)
