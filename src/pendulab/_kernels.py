@@ -10,7 +10,9 @@ import numpy as np
 from numba import njit
 
 #: Method codes understood by :func:`step`.
-TAYLOR2 = 0
+TAYLOR2, RK4, VERLET, TAYLOR = 0, 1, 2, 3
+#: The largest order of the Taylor method of any order (size of its local arrays).
+MAX_TAYLOR_ORDER = 30
 
 
 @njit(cache=True, inline="always")
@@ -23,9 +25,87 @@ def taylor2_step(z1, z2, h, c):
 
 
 @njit(cache=True, inline="always")
+def rk4_step(z1, z2, h, c):
+    """One step of the classical Runge-Kutta method (order 4) for ``z1' = z2, z2' = c sin z1``.
+
+    Hairer, Norsett, Wanner, *Solving ODEs I*, section II.1, table 1.2 ("la" methode de Runge-Kutta).
+    """
+    k1 = z2
+    l1 = c * math.sin(z1)
+    k2 = z2 + 0.5 * h * l1
+    l2 = c * math.sin(z1 + 0.5 * h * k1)
+    k3 = z2 + 0.5 * h * l2
+    l3 = c * math.sin(z1 + 0.5 * h * k2)
+    k4 = z2 + h * l3
+    l4 = c * math.sin(z1 + h * k3)
+    return z1 + h / 6 * (k1 + 2 * k2 + 2 * k3 + k4), z2 + h / 6 * (l1 + 2 * l2 + 2 * l3 + l4)
+
+
+@njit(cache=True, inline="always")
+def verlet_step(z1, z2, h, c):
+    """One step of Stormer-Verlet (velocity form): symplectic, order 2.
+
+    Hairer, Lubich, Wanner, "Geometric numerical integration illustrated by the
+    Stormer-Verlet method", Acta Numerica 12 (2003), equation (1.5) (kick, drift, kick).
+    """
+    z2_half = z2 + 0.5 * h * c * math.sin(z1)
+    z1_next = z1 + h * z2_half
+    return z1_next, z2_half + 0.5 * h * c * math.sin(z1_next)
+
+
+@njit(cache=True, inline="always")
+def taylor_step(p, z1, z2, h, c):
+    """One step of the Taylor method of order ``p``: the generalisation of (3).
+
+    With ``theta(t + s) = sum_k x_k s^k`` and ``sin(theta) = sum_k S_k s^k``,
+    ``cos(theta) = sum_k C_k s^k``, the Taylor coefficients obey (differentiate
+    ``sin(theta)' = cos(theta) theta'`` and ``cos(theta)' = -sin(theta) theta'``)::
+
+        S_k =  1/k sum_{j=1..k} j x_j C_{k-j},   C_k = -1/k sum_{j=1..k} j x_j S_{k-j}
+
+    and (2) gives ``(k+1)(k+2) x_{k+2} = c S_k``. Then ``z1 <- sum_{k<=p} x_k h^k`` and
+    ``z2 <- sum_{k<=p+1} k x_k h^(k-1)``; ``p = 2`` is (3), ``p = 1`` is Euler's method.
+    (Moore, *Interval Analysis*, 1966, ch. 11; Jorba, Zou, Experiment. Math. 14 (2005) 99-117.)
+    """
+    x = np.empty(MAX_TAYLOR_ORDER + 2)
+    S = np.empty(MAX_TAYLOR_ORDER)
+    C = np.empty(MAX_TAYLOR_ORDER)
+    x[0] = z1
+    x[1] = z2
+    S[0] = math.sin(z1)
+    C[0] = math.cos(z1)
+    x[2] = c * S[0] / 2
+    for k in range(1, p):
+        sk = 0.0
+        ck = 0.0
+        for j in range(1, k + 1):
+            sk += j * x[j] * C[k - j]
+            ck -= j * x[j] * S[k - j]
+        S[k] = sk / k
+        C[k] = ck / k
+        x[k + 2] = c * S[k] / ((k + 1) * (k + 2))
+    z1_next = x[p]  # Horner's rule
+    for k in range(p - 1, -1, -1):
+        z1_next = z1_next * h + x[k]
+    z2_next = (p + 1) * x[p + 1]
+    for k in range(p, 0, -1):
+        z2_next = z2_next * h + k * x[k]
+    return z1_next, z2_next
+
+
+@njit(cache=True, inline="always")
 def step(method, order, z1, z2, h, c):
-    """One step of the integrator ``method`` for ``theta'' = c sin(theta)`` (2)."""
-    return taylor2_step(z1, z2, h, c)
+    """One step of the integrator ``method`` for ``theta'' = c sin(theta)`` (2).
+
+    ``order`` is used by the Taylor method of any order only.
+    """
+    if method == TAYLOR2:
+        return taylor2_step(z1, z2, h, c)
+    if method == RK4:
+        return rk4_step(z1, z2, h, c)
+    if method == VERLET:
+        return verlet_step(z1, z2, h, c)
+    return taylor_step(order, z1, z2, h, c)
 
 
 @njit(cache=True)

@@ -14,18 +14,28 @@ from . import _validate as v
 from .cases import G
 from .errors import InputError
 
-#: Integrators by name: (kernel code, order). ``taylor2`` is the coursework's (3).
-METHODS: dict[str, tuple[int, int]] = {"taylor2": (0, 2)}
+#: Integrators by name: (kernel code, order). ``taylor2`` is the coursework's (3);
+#: ``taylor:P`` (any integer ``1 <= P <= 30``) is the Taylor method of order ``P``.
+METHODS: dict[str, tuple[int, int]] = {"taylor2": (0, 2), "rk4": (1, 4), "verlet": (2, 2)}
+TAYLOR_CODE, MAX_TAYLOR_ORDER = 3, 30  # as in _kernels (not imported: it loads numba)
 #: The largest trajectory kept in memory (points); longer runs stream (crossing.py).
 MAX_POINTS = 50_000_000
 
 
 def method_code(method: str) -> tuple[int, int]:
-    """The kernel code and order of the integrator named ``method``."""
-    try:
+    """The kernel code and order of the integrator named ``method``.
+
+    ``"taylor2"`` (the coursework's (3)), ``"rk4"``, ``"verlet"``, or ``"taylor:P"`` for
+    the Taylor method of order ``P`` (``"taylor:2"`` is (3) by the general recurrences).
+    """
+    allowed = "one of " + ", ".join(METHODS) + f", taylor:P (P an integer in [1, {MAX_TAYLOR_ORDER}])"
+    if isinstance(method, str) and method in METHODS:
         return METHODS[method]
-    except KeyError:
-        raise InputError("method", repr(method), "one of " + ", ".join(METHODS)) from None
+    if isinstance(method, str) and method.startswith("taylor:"):
+        text = method[len("taylor:") :]
+        if text.isascii() and text.isdigit() and 1 <= int(text) <= MAX_TAYLOR_ORDER:
+            return TAYLOR_CODE, int(text)
+    raise InputError("method", repr(method), allowed)
 
 
 def step_count(t0: float, t_max: float, step: float) -> int:
@@ -94,7 +104,8 @@ def simulate(
     g : float
         m/s^2.
     method : str
-        ``"taylor2"``: the coursework's algorithm (3).
+        ``"taylor2"``: the coursework's algorithm (3) (default); ``"rk4"``, ``"verlet"``,
+        ``"taylor:P"``: see :func:`method_code`.
 
     Returns
     -------
