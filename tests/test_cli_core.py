@@ -1,0 +1,155 @@
+"""CLI: period, simulate, estimate, length; every bad input of issue 2."""
+import math
+import os
+import subprocess
+import sys
+
+import mpmath
+import pytest
+
+from conftest import assert_one_line_error
+from pendulab.period import agm_period
+
+L3 = 2.0800838231
+
+
+def test_period_json(cli):
+    res = cli("period", "-l", "3.5", "-a", "4pi/5", "--json")
+    assert res.code == 0
+    data = res.json
+    assert data["period"] == agm_period(3.5, 4 * math.pi / 5)
+    assert data["small_angle_period"] == pytest.approx(2 * math.pi * math.sqrt(3.5 / 9.80665), rel=1e-15)
+
+
+def test_period_digits_json(cli):
+    data = cli("period", "-l", "3.5", "-a", "4pi/5", "--digits", "40", "--json").json
+    with mpmath.workdps(60):  # reference: 4 sqrt(l/g) K(sin^2(2 pi/5))
+        ref = 4 * mpmath.sqrt(mpmath.mpf("3.5") / mpmath.mpf("9.80665")) * mpmath.ellipk(mpmath.sin(2 * mpmath.pi / 5) ** 2)
+        assert data["period_digits"] == mpmath.nstr(ref, 40, strip_zeros=False)
+
+
+def test_period_iterations_and_angle_forms(cli):
+    for a in ("pi/4", "45deg", "45°", "0.7853981633974483"):
+        data = cli("period", "-l", "1", "-a", a, "--iterations", "7", "--json").json
+        assert data["period"] == agm_period(1, math.pi / 4, iterations=7)
+        assert data["iterations"] == 7
+    res = cli("period", "-l", "1", "-a", "pi/4")
+    assert "T  =" in res.out and "T0 =" in res.out
+
+
+def test_simulate_table_is_figure3(cli):
+    out = cli("simulate").out.splitlines()
+    assert len(out) == 23  # header + 22 rows, j = 0..21
+    assert out[22].split() == ["2.1", "0.796774928412", "-0.297068336875"]
+    assert out[3].split() == ["0.2", "0.647933915928", "-1.33755362818"]
+
+
+def test_simulate_json_and_csv(cli):
+    data = cli("simulate", "-l", "1", "-a", "pi/4", "--step", "0.1", "--t-max", "2.1", "--json").json
+    assert len(data["t"]) == len(data["theta"]) == len(data["omega"]) == 22
+    assert data["theta"][21] == pytest.approx(0.796774928412, abs=5e-13)
+    csv = cli("simulate", "--csv").out.splitlines()
+    assert csv[0] == "t,theta,omega" and len(csv) == 23
+    assert float(csv[22].split(",")[2]) == pytest.approx(-0.297068336875, abs=5e-13)
+
+
+@pytest.mark.parametrize("ext, magic", [("png", b"\x89PNG"), ("svg", b"<?xml"), ("pdf", b"%PDF")])
+def test_simulate_figures(cli, tmp_path, ext, magic):
+    plot, phase = tmp_path / f"f1.{ext}", tmp_path / f"f2.{ext}"
+    res = cli("simulate", "--plot", plot, "--phase", phase)
+    assert res.code == 0, res.err
+    assert plot.read_bytes().startswith(magic) and phase.read_bytes().startswith(magic)
+    assert sorted(p.name for p in tmp_path.iterdir()) == sorted([plot.name, phase.name])  # no temp files
+
+
+def test_failed_figure_keeps_the_old_file(cli, tmp_path):
+    old = tmp_path / "fig.png"
+    old.write_bytes(b"old")
+    res = cli("simulate", "--step", "0", "--plot", old)
+    assert res.code == 2 and old.read_bytes() == b"old"
+    assert [p.name for p in tmp_path.iterdir()] == ["fig.png"]
+
+
+def test_estimate_json(cli):
+    data = cli("estimate", "-l", L3, "-a", "4pi/5", "--step", "1e-2,1e-3,1e-4", "--json").json
+    exact = agm_period(L3, 4 * math.pi / 5)
+    assert data["exact"] == exact
+    assert [r["step"] for r in data["rows"]] == [1e-2, 1e-3, 1e-4]
+    for r in data["rows"]:
+        assert r["bracket"][0] <= r["cubic"] <= r["bracket"][1]
+        assert abs(r["cubic"] - exact) < r["step"] ** 2
+        assert set(r) >= {"step", "bracket", "linear", "cubic", "cubic_error_estimate"}
+    assert abs(data["rows"][2]["cubic_order"] - 2) < 0.1
+
+
+def test_estimate_table_defaults_to_problem3(cli):
+    res = cli("estimate")
+    assert res.code == 0
+    assert "2.0800838231" in res.out and "4.789424230974388" in res.out
+
+
+def test_length(cli):
+    assert cli("length", "262", "407", "634").out.strip() == "2.0800838231"
+    assert cli("length", "262,407,634", "--json").json["length"] == 2.0800838231
+
+
+@pytest.mark.parametrize(
+    "args, fragments",
+    [
+        (["period", "-l", "0", "-a", "1"], ["--length", "0", "> 0"]),
+        (["period", "-l", "-2", "-a", "1"], ["--length", "-2", "> 0"]),
+        (["period", "-l", "abc", "-a", "1"], ["--length", "abc"]),
+        (["period", "-l", "nan", "-a", "1"], ["--length", "nan"]),
+        (["period", "-l", "1", "-a", "pi"], ["--amplitude", "pi", "[0, pi)"]),
+        (["period", "-l", "1", "-a", "-0.1"], ["--amplitude", "-0.1", "[0, pi)"]),
+        (["period", "-l", "1", "-a", "200deg"], ["--amplitude", "200deg"]),
+        (["period", "-l", "1", "-a", "4pi//5"], ["--amplitude", "4pi//5"]),
+        (["period", "-l", "1", "-a", "1", "--g", "0"], ["--g", "0"]),
+        (["simulate", "--step", "0"], ["--step", "0"]),
+        (["simulate", "--step", "-0.1"], ["--step", "-0.1"]),
+        (["simulate", "--step", "3"], ["--step", "3", "t_max - t0"]),
+        (["simulate", "--t-max", "0"], ["--t-max", "0", "> t0"]),
+        (["simulate", "--t-max", "-1", "--t0", "0"], ["--t-max", "-1"]),
+        (["simulate", "--method", "euler"], ["--method", "euler"]),
+        (["estimate", "--step", "0"], ["0", "numbers > 0"]),
+        (["estimate", "--step", "1e-2,x"], ["x"]),
+        (["estimate", "--t-max", "3"], ["does not return", "--t-max"]),
+        (["estimate", "-a", "3", "--step", "0.5"], ["over the top"]),
+        (["estimate", "-a", "0"], ["--amplitude", "0"]),
+        (["length", "0"], ["--students", "non-zero digit"]),
+        (["length", "12a"], ["--students", "12a"]),
+        (["simulate", "--plot", "/no/such/dir/f.png"], ["--plot", "/no/such/dir"]),
+    ],
+)
+def test_bad_input_one_line_exit_2(cli, args, fragments):
+    assert_one_line_error(cli(*args), *fragments)
+
+
+def test_no_return_suggestion_works(cli):
+    res = cli("estimate", "--step", "1e-2", "--t-max", "3")
+    suggested = res.err.rsplit("--t-max", 1)[1].split()[0]
+    assert cli("estimate", "--step", "1e-2", "--t-max", suggested).code == 0
+
+
+def _subprocess(code):
+    env = dict(os.environ, PYTHONWARNINGS="ignore")
+    return subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, env=env, timeout=120)
+
+
+def test_help_and_period_do_not_import_heavy_modules():
+    code = (
+        "import sys, contextlib, io\n"
+        "from pendulab.cli import main\n"
+        "with contextlib.redirect_stdout(io.StringIO()):\n"
+        "    main(['--help']); main(['period', '-l', '1', '-a', 'pi/4'])\n"
+        "print(sorted(m for m in ('numba', 'scipy', 'matplotlib') if m in sys.modules))\n"
+    )
+    res = _subprocess(code)
+    assert res.stdout.strip() == "[]", res.stderr
+
+
+def test_console_script_bad_input_has_no_traceback():
+    res = subprocess.run([sys.executable, "-m", "pendulab", "period", "-l", "-1", "-a", "1"],
+                         capture_output=True, text=True, timeout=120)
+    assert res.returncode == 2
+    assert res.stderr.count("\n") == 1 and "Traceback" not in res.stderr
