@@ -7,7 +7,7 @@ Compiled kernels are cached on disk (``cache=True``): a second run does not comp
 import math
 
 import numpy as np
-from numba import njit
+from numba import njit, prange
 
 #: Method codes understood by :func:`step`.
 TAYLOR2, RK4, VERLET, TAYLOR = 0, 1, 2, 3
@@ -109,14 +109,22 @@ def step(method, order, z1, z2, h, c):
 
 
 @njit(cache=True)
+def fill_trajectory(method, order, alpha, c, h, z1, z2):
+    """Fill ``z1, z2`` (length ``n + 1``) with ``Z_j = (z1_j, z2_j)`` from ``Z_0 = (alpha, 0)``."""
+    a, b = alpha, 0.0
+    z1[0] = a
+    z2[0] = b
+    for i in range(1, len(z1)):
+        a, b = step(method, order, a, b, h, c)
+        z1[i] = a
+        z2[i] = b
+
+
 def trajectory(method, order, alpha, c, h, n):
-    """The points ``Z_j = (z1_j, z2_j)``, ``j = 0..n``, from ``Z_0 = (alpha, 0)``."""
+    """The points ``Z_j``, ``j = 0..n``, as two new arrays."""
     z1 = np.empty(n + 1)
     z2 = np.empty(n + 1)
-    z1[0] = alpha
-    z2[0] = 0.0
-    for i in range(n):
-        z1[i + 1], z2[i + 1] = step(method, order, z1[i], z2[i], h, c)
+    fill_trajectory(method, order, alpha, c, h, z1, z2)
     return z1, z2
 
 
@@ -160,3 +168,25 @@ def first_return(method, order, alpha, c, h, n):
             return FOUND, i, z1w, z2w
         z1, z2 = z1n, z2n
     return NO_RETURN, n, z1w, z2w
+
+
+@njit(cache=True, parallel=True)
+def agm_means(alpha, iterations, rtol):
+    """``v = (a_n + b_n)/2`` of (7)-(8) from ``(1, cos(alpha_i/2))`` for each amplitude.
+
+    ``iterations < 0``: iterate until ``a - b <= rtol a``; otherwise exactly that many
+    steps (7 is the coursework's). The same loop as ``period.agm_mean`` on one float.
+    """
+    out = np.empty(alpha.size)
+    for i in prange(alpha.size):
+        a, b = 1.0, math.cos(0.5 * alpha[i])
+        if iterations < 0:
+            for _ in range(64):
+                if a - b <= rtol * a:
+                    break
+                a, b = 0.5 * (a + b), math.sqrt(a * b)
+        else:
+            for _ in range(iterations):
+                a, b = 0.5 * (a + b), math.sqrt(a * b)
+        out[i] = 0.5 * (a + b)
+    return out

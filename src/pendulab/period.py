@@ -123,7 +123,13 @@ def agm_period(length: Any, amplitude: Any, g: Any = G, iterations: int | None =
     t0 = small_angle_period(length, g)
     if np.ndim(alpha) == 0 and np.ndim(t0) == 0:
         return t0 / agm_mean(math.cos(0.5 * alpha), iterations)
-    return t0 / agm_mean(np.cos(0.5 * np.asarray(alpha)), iterations)
+    # Arrays: one compiled pass, cos and the AGM fused, on all cores.
+    from ._kernels import agm_means
+
+    alpha = np.asarray(alpha, dtype=float)
+    flat = np.ascontiguousarray(alpha).ravel()
+    means = agm_means(flat, -1 if iterations is None else iterations, _RTOL).reshape(alpha.shape)
+    return t0 / means
 
 
 def agm_iterations(amplitude: float) -> int:
