@@ -128,6 +128,16 @@ def trajectory(method, order, alpha, c, h, n):
     return z1, z2
 
 
+@njit(cache=True, inline="always")
+def push(z1w, z2w, a, b):
+    """Shift the 5-point window one place and put ``(a, b)`` last."""
+    for k in range(4):
+        z1w[k] = z1w[k + 1]
+        z2w[k] = z2w[k + 1]
+    z1w[4] = a
+    z2w[4] = b
+
+
 #: Status codes of :func:`first_return`.
 FOUND, NO_RETURN, LEFT_OSCILLATION, TOO_EARLY = 0, 1, 2, 3
 
@@ -148,11 +158,7 @@ def first_return(method, order, alpha, c, h, n):
         z1n, z2n = step(method, order, z1, z2, h, c)
         if not abs(z1n) < math.pi:  # also catches NaN
             return LEFT_OSCILLATION, i, z1w, z2w
-        for k in range(4):
-            z1w[k] = z1w[k + 1]
-            z2w[k] = z2w[k + 1]
-        z1w[4] = z1n
-        z2w[4] = z2n
+        push(z1w, z2w, z1n, z2n)
         if z2 > 0.0 and z2n <= 0.0 and z1n > 0.0:  # j = i
             if i < 2:
                 return TOO_EARLY, i, z1w, z2w
@@ -160,11 +166,7 @@ def first_return(method, order, alpha, c, h, n):
                 return NO_RETURN, n, z1w, z2w
             # One more point: the window becomes Z_{j-2} .. Z_{j+2}.
             z1n, z2n = step(method, order, z1n, z2n, h, c)
-            for k in range(4):
-                z1w[k] = z1w[k + 1]
-                z2w[k] = z2w[k + 1]
-            z1w[4] = z1n
-            z2w[4] = z2n
+            push(z1w, z2w, z1n, z2n)
             return FOUND, i, z1w, z2w
         z1, z2 = z1n, z2n
     return NO_RETURN, n, z1w, z2w

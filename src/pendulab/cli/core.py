@@ -13,7 +13,7 @@ _ANGLE_HELP = "Amplitude alpha in [0, pi): 0.785, pi/4, 4pi/5, 45deg, 45°."
 def _method_option(f):
     return click.option(
         "--method", default="taylor2", show_default=True,
-        help="Integrator: taylor2 is the coursework's algorithm (3).",
+        help="Integrator: taylor2 (the coursework's algorithm (3)), rk4, verlet, or taylor:P (order P).",
     )(f)
 
 
