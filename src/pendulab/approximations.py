@@ -1,0 +1,170 @@
+"""Classical closed-form approximations of the pendulum's period, against the exact one.
+
+Each formula gives the ratio ``T/T0`` to the small-angle period ``T0 = 2 pi sqrt(l/g)``
+as a function of the amplitude ``alpha`` alone, so its relative error
+``T_approx/T - 1 = (T_approx/T0) M(1, cos(alpha/2)) - 1`` (the exact ``T/T0`` is
+``1/M(1, cos(alpha/2))``, equations (7)-(8)) does not depend on ``l`` or ``g``.
+
+References
+----------
+.. [9]  The coursework's approximation (9): ``T~ = T0 (1 + k^2/4)``, ``k = sin(alpha/2)``,
+   the first two terms of ``T/T0 = sum ((2n)!/(2^(2n) (n!)^2))^2 k^(2n)`` (DLMF 19.5.1).
+.. [KF] R. B. Kidd, S. L. Fogg, "A simple formula for the large-angle pendulum period",
+   Phys. Teach. 40, 81-83 (2002): ``T0 / sqrt(cos(alpha/2))``.
+.. [LA] F. M. S. Lima, P. Arun, "An accurate formula for the period of a simple
+   pendulum oscillating beyond the small angle regime", Am. J. Phys. 74, 892-895 (2006):
+   ``-T0 ln(cos(alpha/2)) / (1 - cos(alpha/2))``.
+.. [G]  W. P. Ganley, "Simple pendulum approximation", Am. J. Phys. 53, 73-76 (1985):
+   ``T0 sqrt(F alpha / sin(F alpha))``, ``F = sqrt(3)/2``.
+.. [CS] C. G. Carvalhaes, P. Suppes, "Approximations for the period of the simple
+   pendulum based on the arithmetic-geometric mean", Am. J. Phys. 76, 1150-1154 (2008):
+   ``T0 / v_n``, ``v_n = (a_n + b_n)/2`` after ``n`` iterations of (7).
+"""
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+from typing import Any, Callable
+
+import numpy as np
+
+from . import _validate as v
+from .errors import InputError
+from .period import _check_amplitudes, agm_mean
+
+_GANLEY_F = math.sqrt(3) / 2
+
+
+def _small_angle(alpha: np.ndarray) -> np.ndarray:
+    return np.ones_like(alpha)
+
+
+def _coursework9(alpha: np.ndarray) -> np.ndarray:
+    k = np.sin(alpha / 2)
+    return 1 + k * k / 4
+
+
+def _kidd_fogg(alpha: np.ndarray) -> np.ndarray:
+    return 1 / np.sqrt(np.cos(alpha / 2))
+
+
+def _lima_arun(alpha: np.ndarray) -> np.ndarray:
+    # 1 - cos(a/2) = 2 sin^2(a/4) without cancellation; the limit at a = 0 is 1.
+    c = np.cos(alpha / 2)
+    one_minus_c = 2 * np.sin(alpha / 4) ** 2
+    with np.errstate(invalid="ignore", divide="ignore"):
+        r = -np.log(c) / one_minus_c
+    return np.where(alpha == 0, 1.0, r)
+
+
+def _ganley(alpha: np.ndarray) -> np.ndarray:
+    x = _GANLEY_F * alpha
+    with np.errstate(invalid="ignore", divide="ignore"):
+        r = np.sqrt(x / np.sin(x))
+    return np.where(alpha == 0, 1.0, r)
+
+
+def _agm(n: int) -> Callable[[np.ndarray], np.ndarray]:
+    return lambda alpha: 1 / agm_mean(np.cos(alpha / 2), n)
+
+
+@dataclass(frozen=True)
+class Formula:
+    """One approximation: its name, the ratio ``T/T0`` as a function of ``alpha``, its source."""
+
+    name: str
+    label: str
+    ratio: Callable[[np.ndarray], np.ndarray]
+    source: str
+
+
+#: The AGM truncated after these iteration counts is compared by default.
+AGM_ITERATIONS = (1, 2, 3)
+
+FORMULAS: dict[str, Formula] = {
+    f.name: f
+    for f in [
+        Formula("small-angle", "T0", _small_angle, "small-angle limit, problem 1"),
+        Formula("coursework-9", "T0 (1 + k^2/4)", _coursework9, "coursework equation (9)"),
+        Formula("kidd-fogg", "T0 / sqrt(cos(a/2))", _kidd_fogg, "Kidd, Fogg, Phys. Teach. 40, 81 (2002)"),
+        Formula(
+            "lima-arun",
+            "-T0 ln(cos(a/2)) / (1 - cos(a/2))",
+            _lima_arun,
+            "Lima, Arun, Am. J. Phys. 74, 892 (2006)",
+        ),
+        Formula("ganley", "T0 sqrt(Fa / sin(Fa)), F = sqrt(3)/2", _ganley, "Ganley, Am. J. Phys. 53, 73 (1985)"),
+    ]
+    + [
+        Formula(f"agm{n}", f"T0 / v_{n}, {n} AGM iteration{'s' * (n > 1)}", _agm(n),
+                "Carvalhaes, Suppes, Am. J. Phys. 76, 1150 (2008); (7)-(8)")
+        for n in AGM_ITERATIONS
+    ]
+}
+
+
+def approximate_period(name: str, length: Any, amplitude: Any, g: Any = 9.80665) -> Any:
+    """The period by the formula ``name`` (a key of :data:`FORMULAS` or ``agmN``)."""
+    formula = _formula(name)
+    t0 = 2 * math.pi * math.sqrt(v.positive("length", length) / v.positive("g", g))
+    alpha = np.asarray(_check_amplitudes(amplitude), dtype=float)
+    r = t0 * formula.ratio(alpha)
+    return float(r) if r.ndim == 0 else r
+
+
+def _formula(name: str) -> Formula:
+    if name in FORMULAS:
+        return FORMULAS[name]
+    if isinstance(name, str) and name.startswith("agm") and name[3:].isascii() and name[3:].isdigit():
+        n = v.integer("name", int(name[3:]), 0, 64)
+        return Formula(name, f"T0 / v_{n}", _agm(n), "Carvalhaes, Suppes (2008); (7)-(8)")
+    raise InputError("formula", repr(name), "one of " + ", ".join(FORMULAS) + ", agmN (N an integer)")
+
+
+@dataclass(frozen=True)
+class ApproximationErrors:
+    """Relative errors ``T_approx/T - 1`` of each formula at each amplitude.
+
+    Attributes
+    ----------
+    amplitudes : ndarray, shape (n,)
+        ``alpha`` (rad).
+    exact_ratio : ndarray, shape (n,)
+        ``T/T0 = 1/M(1, cos(alpha/2))`` (AGM to convergence).
+    formulas : tuple of Formula
+    errors : dict name -> ndarray, shape (n,)
+        Signed relative errors. Values near 1e-16 are rounding, not the formula.
+    """
+
+    amplitudes: np.ndarray
+    exact_ratio: np.ndarray
+    formulas: tuple[Formula, ...]
+    errors: dict[str, np.ndarray]
+
+    def max_amplitude_within(self, name: str, tol: float) -> float:
+        """The largest tabulated amplitude up to which ``|error| <= tol`` holds throughout."""
+        bad = np.abs(self.errors[name]) > tol
+        if not bad.any():
+            return float(self.amplitudes[-1])
+        first = int(np.argmax(bad))
+        return float(self.amplitudes[first - 1]) if first > 0 else math.nan
+
+
+def approximation_errors(amplitudes: Any = None, names: Any = None) -> ApproximationErrors:
+    """Relative error of each approximation against the exact period over ``[0, pi)``.
+
+    Parameters
+    ----------
+    amplitudes : array_like, optional
+        Amplitudes in ``[0, pi)`` (rad), increasing. Default: 1000 points from 0.1 to
+        179.9 degrees.
+    names : sequence of str, optional
+        Formulas (keys of :data:`FORMULAS`, or ``agmN``); default all of them.
+    """
+    if amplitudes is None:
+        amplitudes = np.radians(np.linspace(0.1, 179.9, 1000))
+    alpha = np.atleast_1d(np.asarray(_check_amplitudes(amplitudes), dtype=float))
+    formulas = tuple(_formula(n) for n in (names if names is not None else FORMULAS))
+    m = agm_mean(np.cos(alpha / 2))
+    errors = {f.name: f.ratio(alpha) * m - 1 for f in formulas}
+    return ApproximationErrors(alpha, 1 / m, formulas, errors)
