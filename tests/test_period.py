@@ -138,3 +138,21 @@ def test_bad_input_names_the_argument(kwargs, name):
         agm_period(**kwargs)
     assert err.value.name == name
     assert name in str(err.value)
+
+
+from hypothesis import given, settings
+from hypothesis import strategies as st
+
+
+@settings(max_examples=200, deadline=None)
+@given(
+    length=st.floats(1e-3, 1e3),
+    a1=st.floats(0, math.pi, exclude_max=True),
+    a2=st.floats(0, math.pi, exclude_max=True),
+)
+def test_invariants(length, a1, a2):
+    # T grows with the amplitude, is at least the small-angle period, and scales as sqrt(l).
+    lo, hi = sorted((a1, a2))
+    assert agm_period(length, lo) <= agm_period(length, hi)
+    assert agm_period(length, lo) >= small_angle_period(length) * (1 - 1e-15)
+    assert agm_period(4 * length, hi) == pytest.approx(2 * agm_period(length, hi), rel=1e-15)

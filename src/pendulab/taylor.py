@@ -19,7 +19,7 @@ from .errors import InputError
 METHODS: dict[str, tuple[int, int]] = {"taylor2": (0, 2), "rk4": (1, 4), "verlet": (2, 2)}
 TAYLOR_CODE, MAX_TAYLOR_ORDER = 3, 30  # as in _kernels (not imported: it loads numba)
 #: The largest trajectory kept in memory (points); longer runs stream (crossing.py).
-MAX_POINTS = 50_000_000
+MAX_POINTS = 10_000_001
 
 
 def method_code(method: str) -> tuple[int, int]:
