@@ -1,0 +1,30 @@
+"""``pendulab serve``: the local web explorer."""
+from __future__ import annotations
+
+import click
+
+
+@click.command()
+@click.option("--port", type=click.IntRange(1, 65535), default=8000, show_default=True, help="TCP port to listen on.")
+@click.option("--host", default="127.0.0.1", show_default=True,
+              help="Address to bind; the default serves this computer only (0.0.0.0: the whole network).")
+def serve(port: int, host: str) -> None:
+    """Start the web explorer: simulate, animate and plot the pendulum in the browser."""
+    import socket
+
+    # Bind once here so a busy port or an unknown host is one clear line, not a uvicorn traceback.
+    try:
+        infos = socket.getaddrinfo(host, port, type=socket.SOCK_STREAM)
+        with socket.socket(infos[0][0], socket.SOCK_STREAM) as s:
+            s.setsockopt(socket.SOL_SOCKET, socket.SO_REUSEADDR, 1)
+            s.bind(infos[0][4])
+    except OSError as exc:
+        raise click.BadParameter(f"cannot listen on {host}:{port}: {exc.strerror or exc}", param_hint="--host/--port")
+
+    import uvicorn
+
+    from ..web import create_app
+
+    shown = f"[{host}]" if ":" in host else host
+    click.echo(f"pendulab explorer: http://{shown}:{port}/   (Ctrl+C to stop)", err=True)
+    uvicorn.run(create_app(), host=host, port=port, log_level="warning")
