@@ -104,3 +104,309 @@ def problem3(
         cubic_orders=observed_orders(steps, [abs(e.cubic - exact) for e in estimates]),
         cubic=cubic,
     )
+
+
+# --------------------------------------------------------------------------- problem 1
+def problem1(
+    length: float = cases.GRAVITY_LENGTH,
+    length_error: float = cases.GRAVITY_LENGTH_ERROR,
+    period: float = cases.GRAVITY_PERIOD,
+    period_error: float = cases.GRAVITY_PERIOD_ERROR,
+):
+    """Problem 1: ``g = 4 pi^2 l/T^2`` from ``l = 115.2 cm``, ``T = 2.1536 s`` and its error.
+
+    Returns the :class:`pendulab.uncertainty.GravityEstimate` (formulas of 1(a), bounds,
+    guaranteed significant digits of 1(b) and the rule used).
+    """
+    from .uncertainty import gravity_estimate
+
+    return gravity_estimate(length, length_error, period, period_error)
+
+
+# --------------------------------------------------------------------------- problem 2
+@dataclass(frozen=True)
+class Problem2:
+    """Problem 2: the amplitude with ``T~ = target`` by Newton's method on (9).
+
+    Attributes
+    ----------
+    equation : PeriodEquation
+        ``f(alpha) = (2 pi/p)(1 + sin^2(alpha/2)/4) - target``, with ``p``, ``f``, ``f'``, ``f''``.
+    interval : IntervalCheck
+        2(a): ``[a, b]`` and the five sufficient conditions, each with its numbers.
+    interval_degrees : (float, float)
+        ``[a, b]`` in degrees.
+    x0 : float
+        The starting value (rad).
+    x0_rule : str
+        Why this ``x0``.
+    x0_in_interval : bool
+    run : NewtonResult
+        Iterates, corrections, ``q_k``, ``k_max``, asymptotic constant, error estimate.
+    alpha, alpha_degrees : float
+        The last iterate, rad and degrees.
+    closed_form : float
+        ``2 arcsin(2 sqrt(target p/(2 pi) - 1))``: (9) solved by hand, as a check.
+    ratios : tuple of float
+        ``|x[k+2]-x[k+1]| / |x[k+1]-x[k]|`` -> 0: convergence is superlinear (2(b)).
+    justification : str
+        Why the grid check of the conditions is a proof for this ``f``.
+    """
+
+    equation: "PeriodEquation"
+    interval: "IntervalCheck"
+    interval_degrees: tuple[float, float]
+    x0: float
+    x0_rule: str
+    x0_in_interval: bool
+    run: "NewtonResult"
+    alpha: float
+    alpha_degrees: float
+    closed_form: float
+    ratios: tuple[float | None, ...]
+    justification: str
+
+    @property
+    def asymptotic_constant(self) -> float:
+        return self.run.asymptotic_constant
+
+    @property
+    def error_estimate(self) -> float:
+        return self.run.error_estimate
+
+
+def problem2(
+    length: float = cases.NEWTON_LENGTH,
+    target: float = cases.NEWTON_TARGET,
+    x0: float | None = None,
+    g: float = cases.G,
+) -> Problem2:
+    """Problem 2: solve ``T~(alpha) = target`` (9) by Newton's method, ``l = 0.5``, target 1.5 s.
+
+    ``x0=None`` starts from the end of the convergence interval where ``f f'' > 0``
+    (Fourier's condition: the iterates then approach the root monotonically).
+    """
+    from . import _validate as v
+    from .errors import InputError
+    from .newton import PeriodEquation
+
+    eq = PeriodEquation(length, target, g)
+    if x0 is not None and not 0 < v.finite("x0", x0) < math.pi:
+        raise InputError("x0", x0, "an angle in (0, pi) rad, i.e. 0 < x0 < 180deg")
+    chk = eq.interval()
+    if x0 is None:
+        start = eq.fourier_start(chk)
+        rule = "the end of [a, b] where f(x0) f''(x0) > 0 (Fourier): monotone convergence"
+    else:
+        start = float(x0)
+        rule = "given"
+    run = eq.newton(start)
+    d = [abs(b - a) for a, b in zip(run.iterates, run.iterates[1:])]
+    ratios = tuple(d[k + 1] / d[k] if d[k] > 0 else None for k in range(len(d) - 1))
+    a_deg = round(math.degrees(chk.a), 9)
+    b_deg = round(math.degrees(chk.b), 9)
+    sign = "positive" if chk.b <= math.pi / 2 else "negative"
+    return Problem2(
+        equation=eq,
+        interval=chk,
+        interval_degrees=(a_deg, b_deg),
+        x0=start,
+        x0_rule=rule,
+        x0_in_interval=chk.a <= start <= chk.b,
+        run=run,
+        alpha=run.root,
+        alpha_degrees=math.degrees(run.root),
+        closed_form=eq.closed_form(),
+        ratios=ratios,
+        justification=(
+            "f'(alpha) = (2 pi/p) sin(alpha)/8 > 0 on (0, pi) and f''(alpha) = (2 pi/p) cos(alpha)/8 is "
+            f"{sign} on [a, b], which lies on one side of pi/2; f is monotone, so the sign change makes the "
+            "zero unique; with the two Newton steps from the ends inside [a, b], every x0 in [a, b] converges."
+        ),
+    )
+
+
+# --------------------------------------------------------------------------- problem 4
+#: 4(d)(ii)'s threshold.
+PROBLEM4_TOLERANCE = 1e-5
+#: Points per data step for the deviation from the exact motion between data points.
+PROBLEM4_FINE = 20
+
+
+@dataclass(frozen=True)
+class Problem4:
+    """Problem 4: least-squares fit of the Taylor data by (10).
+
+    Attributes
+    ----------
+    length, amplitude, step : float
+        ``l = 3.5``, ``alpha = pi/4``, ``h = 0.01``.
+    period : float
+        ``T^`` of (8), 7 iterations.
+    t_max : float
+        ``ceil(T^)`` (4 for ``l = 3.5``: 401 points, not the original's ``Y_0 .. Y_600``)
+        unless given.
+    t_max_rule : str
+    data : Trajectory
+        4(a): the points ``Y_j = (t_j, z1_j)``.
+    last_points : ndarray, shape (10, 2)
+        4(a): the last 10 data points.
+    objective : str
+        4(b): the function minimised.
+    fit : LeastSquaresFit
+        4(c)-(d): normal equations (rounded), the SPD proof, coefficients, deviations.
+    tolerance : float
+        ``1e-5``.
+    below_tolerance : bool
+        4(d)(ii), answered at the data points: ``max_j |z1_j - phi~(t_j)| < 1e-5``.
+    exact_deviation, exact_deviation_at : float
+        ``max |theta(t) - phi~(t)|`` over ``[t0, t_max]`` sampled 20 times per step, against
+        the exact motion ``theta(t)`` (Jacobi functions): the deviation between data points.
+    taylor_error : float
+        ``max_j |z1_j - theta(t_j)|``: the data's own error (Taylor method).
+    answer : str
+        4(d)(ii) in words.
+    """
+
+    length: float
+    amplitude: float
+    step: float
+    period: float
+    t_max: float
+    t_max_rule: str
+    data: Trajectory
+    last_points: "np.ndarray"
+    objective: str
+    fit: "LeastSquaresFit"
+    tolerance: float
+    below_tolerance: bool
+    exact_deviation: float
+    exact_deviation_at: float
+    taylor_error: float
+    answer: str
+
+    @property
+    def points(self) -> int:
+        return len(self.data.t)
+
+
+def problem4(
+    length: float = cases.PROBLEM4.l,
+    amplitude: float = cases.PROBLEM4.alpha,
+    step: float = cases.PROBLEM4_STEP,
+    t_max: float | None = None,
+    decimals: int | None = cases.PROBLEM4_ROUND,
+    g: float = cases.G,
+) -> Problem4:
+    """Problem 4: data by the Taylor algorithm, fit by (10) through rounded normal equations."""
+    import numpy as np
+
+    from .lsq import TRIG_BASIS, TRIG_LABELS, evaluate, least_squares
+    from .motion import exact_motion
+
+    period = agm_period(length, amplitude, g, iterations=7)
+    if t_max is None:
+        t_max, rule = float(math.ceil(period)), f"ceil(T^) = ceil({period:.6f})"
+    else:
+        rule = "given"
+    data = simulate(length, amplitude, step, t_max, 0.0, g)
+    fit = least_squares(data.t, data.theta, decimals=decimals)
+    terms = " + ".join(f"{n} {lab}" if lab != "1" else n for n, lab in zip(fit.names, TRIG_LABELS))
+    objective = f"E({', '.join(fit.names)}) = sum_(j=0)^({len(data.t) - 1}) (z1_j - ({terms})|_(t=t_j))^2"
+    fine = np.linspace(data.t[0], data.t[-1], PROBLEM4_FINE * (len(data.t) - 1) + 1)
+    dev = np.abs(exact_motion(length, amplitude, fine, g).theta - evaluate(fit.coefficients, TRIG_BASIS, fine))
+    j = int(np.argmax(dev))
+    taylor_err = float(np.max(np.abs(exact_motion(length, amplitude, data.t, g).theta - data.theta)))
+    below = fit.max_deviation < PROBLEM4_TOLERANCE
+    answer = (
+        f"{'Yes' if below else 'No'}: the largest absolute deviation at the data points is "
+        f"{fit.max_deviation:.3e} (at t = {fit.argmax_deviation:g}), "
+        f"{'below' if below else 'above'} 1e-5. Between the data points, against the exact motion, "
+        f"it is {float(dev[j]):.3e}."
+    )
+    return Problem4(
+        length=float(length),
+        amplitude=float(amplitude),
+        step=float(step),
+        period=period,
+        t_max=float(t_max),
+        t_max_rule=rule,
+        data=data,
+        last_points=data.time_series()[-10:],
+        objective=objective,
+        fit=fit,
+        tolerance=PROBLEM4_TOLERANCE,
+        below_tolerance=below,
+        exact_deviation=float(dev[j]),
+        exact_deviation_at=float(fine[j]),
+        taylor_error=taylor_err,
+        answer=answer,
+    )
+
+
+# --------------------------------------------------------------------------- problem 5
+@dataclass(frozen=True)
+class Problem5:
+    """Problem 5: the period integral (1) by rule (11), simple and composite.
+
+    Attributes
+    ----------
+    length, amplitude, g : float
+        ``l = 3.5``, ``alpha = 4 pi/5``.
+    exact : float
+        ``T^`` of (8), 7 iterations: the reference of the errors.
+    rule : Rule
+        Rule (11) (3-point Gauss-Legendre, checked: weights sum 2, degree 5).
+    answer_5a : str
+        Why the trapezoidal and Simpson rules cannot be applied to (1).
+    single : float
+        5(b): one application of (11) on ``[0, alpha]``.
+    composite10 : float
+        5(c): ``S_10``.
+    rows : tuple of QuadratureRow
+        5(d): ``n``, period, error, observed rate; with the substitution's columns.
+    rate_explanation : str
+    """
+
+    length: float
+    amplitude: float
+    g: float
+    exact: float
+    rule: "Rule"
+    answer_5a: str
+    single: float
+    composite10: float
+    rows: tuple
+    rate_explanation: str
+
+
+def problem5(
+    length: float = cases.PROBLEM5.l,
+    amplitude: float = cases.PROBLEM5.alpha,
+    ns: Sequence[int] = (1,) + tuple(cases.PROBLEM5_N),
+    substitution: bool = True,
+    g: float = cases.G,
+) -> Problem5:
+    """Problem 5: ``T`` from (1) by rule (11) on 1, 10, ..., 10^5 subintervals, errors against (8)."""
+    from .quadrature import ANSWER_5A, GAUSS3, convergence_table, quadrature_period
+
+    exact = agm_period(length, amplitude, g, iterations=7)
+    rows = convergence_table(length, amplitude, ns, exact, g, substitution=substitution)
+    return Problem5(
+        length=float(length),
+        amplitude=float(amplitude),
+        g=float(g),
+        exact=exact,
+        rule=GAUSS3,
+        answer_5a=ANSWER_5A,
+        single=quadrature_period(length, amplitude, 1, g),
+        composite10=quadrature_period(length, amplitude, 10, g),
+        rows=tuple(rows),
+        rate_explanation=(
+            "The integrand behaves like (sin(alpha) (alpha - theta))^(-1/2) near theta = alpha: the last "
+            "subinterval of width h holds about 2 sqrt(h/sin(alpha)) of the integral, which the rule misses "
+            "by a fixed fraction, so the error falls like n^(-1/2) (observed rate 0.5), not like n^(-6). "
+            "After sin(theta/2) = sin(alpha/2) sin(phi) the integrand is analytic and the same rule "
+            "converges geometrically fast, down to rounding level."
+        ),
+    )

@@ -1,0 +1,191 @@
+"""Problem 1: ``g`` from a measured length and period, with its propagated error.
+
+From the small-angle period ``T = 2 pi sqrt(l/g)`` (problem 1), ``g = 4 pi^2 l / T^2``.
+Measured values ``l~``, ``T~`` with absolute errors at most ``dl``, ``dT`` give, to first
+order (the general error-propagation formula, [1]_ chapter 1),
+
+    |e_g| <= |dg/dl| dl + |dg/dT| dT = (4 pi^2 / T^2) dl + (8 pi^2 l / T^3) dT,
+    |e_g| / |g| <= dl / l + 2 dT / T.
+
+Because ``g`` grows with ``l`` and falls with ``T``, the exact worst case over the box
+``[l - dl, l + dl] x [T - dT, T + dT]`` is attained at its corners; it is reported too,
+and the significant digits are counted with the larger of the two bounds, so they are
+guaranteed, not only first-order.
+
+Significant digits (the definition used in the course, [1]_ chapter 1): an approximation ``x~`` whose leading
+digit has place value ``10^k`` (``k = floor(log10 |x~|)``) has ``n`` significant digits
+when ``|x - x~| <= 0.5 * 10^(k - n + 1)``, i.e. the error is at most half a unit in the
+``n``-th significant digit. ``n`` is the largest integer for which that holds.
+
+References
+----------
+.. [1] H. Pina, *Métodos Numéricos*, McGraw-Hill, 1995 (and Escolar Editora, 2010).
+"""
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+from decimal import ROUND_HALF_UP, Decimal
+
+from . import _validate as v
+from .errors import InputError
+
+#: The rule used for significant digits, as stated in the output.
+DIGITS_RULE = (
+    "x~ has n significant digits when |x - x~| <= 0.5 * 10^(k - n + 1), "
+    "10^k the place value of the leading digit of x~ (half a unit in the n-th significant digit)"
+)
+#: Problem 1(a), first-order propagated errors.
+ABS_ERROR_FORMULA = "|e_g| <= (4 pi^2 / T^2) dl + (8 pi^2 l / T^3) dT"
+REL_ERROR_FORMULA = "|e_g| / g <= dl / l + 2 dT / T"
+#: Never claim more digits than a double carries.
+MAX_DIGITS = 15
+
+
+def gravity(length: float, period: float) -> float:
+    """``g = 4 pi^2 l / T^2``, the small-angle period formula of problem 1 solved for ``g``."""
+    return 4 * math.pi**2 * length / period**2
+
+
+def abs_error_bound(length: float, length_error: float, period: float, period_error: float) -> float:
+    """First-order absolute error bound of ``g``: ``(4 pi^2/T^2) dl + (8 pi^2 l/T^3) dT``."""
+    return 4 * math.pi**2 / period**2 * length_error + 8 * math.pi**2 * length / period**3 * period_error
+
+
+def rel_error_bound(length: float, length_error: float, period: float, period_error: float) -> float:
+    """First-order relative error bound of ``g``: ``dl/l + 2 dT/T``."""
+    return length_error / length + 2 * period_error / period
+
+
+def significant_digits(value: float, error: float, max_digits: int = MAX_DIGITS) -> int:
+    """The number ``n`` of significant digits guaranteed for ``value`` by ``|error|``.
+
+    The largest ``n`` with ``error <= 0.5 * 10^(k - n + 1)``, ``k = floor(log10|value|)``
+    (module docstring). 0 when the error exceeds half a unit of the leading digit;
+    ``max_digits`` when the error is 0.
+    """
+    if value == 0:
+        return 0
+    if error <= 0:
+        return max_digits
+    k = math.floor(math.log10(abs(value)))
+    # error <= 0.5 * 10^(k - n + 1)  <=>  n <= k + 1 + log10(0.5 / error)
+    n = math.floor(k + 1 + math.log10(0.5 / error))
+    # Guard the floor against log10 rounding right at a boundary.
+    while n + 1 <= max_digits and error <= 0.5 * 10.0 ** (k - n):
+        n += 1
+    while n > 0 and error > 0.5 * 10.0 ** (k - n + 1):
+        n -= 1
+    return max(0, min(n, max_digits))
+
+
+def round_significant(value: float, digits: int) -> str:
+    """``value`` rounded half away from zero to ``digits`` significant digits, as text."""
+    if digits <= 0 or value == 0:
+        return "0"
+    d = Decimal(value)
+    quantum = Decimal(1).scaleb(d.adjusted() - digits + 1)
+    return str(d.quantize(quantum, rounding=ROUND_HALF_UP))
+
+
+@dataclass(frozen=True)
+class GravityEstimate:
+    """``g`` from measured ``l`` and ``T``, with its error bounds (problem 1).
+
+    Attributes
+    ----------
+    length, length_error : float
+        ``l`` and its absolute error bound, m.
+    period, period_error : float
+        ``T`` and its absolute error bound, s.
+    g : float
+        ``4 pi^2 l / T^2``, m/s^2.
+    abs_error, rel_error : float
+        First-order propagated bounds (1(a)).
+    dg_dl, dg_dT : float
+        The partial derivatives ``4 pi^2/T^2`` and ``-8 pi^2 l/T^3`` at the measured point.
+    g_min, g_max : float
+        The exact range of ``g`` over the error box (corners ``(l-dl, T+dT)``, ``(l+dl, T-dT)``).
+    worst_error : float
+        ``max(g_max - g, g - g_min)``: the exact worst-case error.
+    error_bound : float
+        ``max(abs_error, worst_error)``: the bound used to count digits.
+    significant_digits : int
+        Digits guaranteed by ``error_bound`` under :data:`DIGITS_RULE` (1(b)).
+    g_text : str
+        ``g`` rounded half away from zero to those digits.
+    rule : str
+        :data:`DIGITS_RULE`.
+    """
+
+    length: float
+    length_error: float
+    period: float
+    period_error: float
+    g: float
+    abs_error: float
+    rel_error: float
+    dg_dl: float
+    dg_dT: float
+    g_min: float
+    g_max: float
+    worst_error: float
+    error_bound: float
+    significant_digits: int
+    g_text: str
+    rule: str = DIGITS_RULE
+    abs_error_formula: str = ABS_ERROR_FORMULA
+    rel_error_formula: str = REL_ERROR_FORMULA
+
+
+def gravity_estimate(length: float, length_error: float, period: float, period_error: float) -> GravityEstimate:
+    """``g`` and its propagated error from measured ``l +- dl`` (m) and ``T +- dT`` (s).
+
+    Parameters
+    ----------
+    length : float
+        ``l > 0``, m.
+    length_error : float
+        ``0 <= dl < l``, m.
+    period : float
+        ``T > 0``, s.
+    period_error : float
+        ``0 <= dT < T``, s.
+
+    Returns
+    -------
+    GravityEstimate
+    """
+    length = v.positive("length", length)
+    period = v.positive("period", period)
+    length_error = v.non_negative("length_error", length_error)
+    period_error = v.non_negative("period_error", period_error)
+    if not length_error < length:
+        raise InputError("length_error", length_error, f"< length = {length:g} (a positive length in the box)")
+    if not period_error < period:
+        raise InputError("period_error", period_error, f"< period = {period:g} (a positive period in the box)")
+    g = gravity(length, period)
+    abs_err = abs_error_bound(length, length_error, period, period_error)
+    rel_err = rel_error_bound(length, length_error, period, period_error)
+    g_min = gravity(length - length_error, period + period_error)
+    g_max = gravity(length + length_error, period - period_error)
+    worst = max(g_max - g, g - g_min)
+    bound = max(abs_err, worst)
+    n = significant_digits(g, bound)
+    return GravityEstimate(
+        length=length,
+        length_error=length_error,
+        period=period,
+        period_error=period_error,
+        g=g,
+        abs_error=abs_err,
+        rel_error=rel_err,
+        dg_dl=4 * math.pi**2 / period**2,
+        dg_dT=-8 * math.pi**2 * length / period**3,
+        g_min=g_min,
+        g_max=g_max,
+        worst_error=worst,
+        error_bound=bound,
+        significant_digits=n,
+        g_text=round_significant(g, n),
+    )
