@@ -1,0 +1,184 @@
+"""Commands beyond the coursework: ``approximations`` and ``sweep``."""
+from __future__ import annotations
+
+import math
+import sys
+
+import click
+
+from ..errors import InputError
+from ..exact import parse_angle
+from ._common import POSITIVE, POSITIVE_LIST, _Type, emit_json, g_option, json_option
+
+#: The amplitudes (degrees) of the approximations table.
+TABLE_DEGREES = (1, 10, 30, 60, 90, 120, 150, 170, 179, 179.9)
+
+
+class AngleRangeType(_Type):
+    """``START:STOP:COUNT`` (``1deg:179deg:1000``: COUNT evenly spaced angles, both ends
+    included) or a single angle; every angle in (0, pi)."""
+
+    name = "range"
+    _ALLOWED = "START:STOP:COUNT with 0 < START < STOP < pi and COUNT an integer >= 2, or one angle in (0, pi)"
+
+    def parse(self, text: str):
+        import numpy as np
+
+        parts = text.split(":")
+        if len(parts) == 1:
+            a = self._angle(text, parts[0])
+            return np.array([a])
+        if len(parts) != 3:
+            raise InputError("amplitude", text, self._ALLOWED)
+        start, stop = self._angle(text, parts[0]), self._angle(text, parts[1])
+        try:
+            count = int(parts[2])
+        except ValueError:
+            raise InputError("amplitude", text, self._ALLOWED) from None
+        if count < 2 or not start < stop:
+            raise InputError("amplitude", text, self._ALLOWED + " (the range is empty or reversed)")
+        return np.linspace(start, stop, count)
+
+    def _angle(self, text: str, part: str) -> float:
+        try:
+            x = float(parse_angle("amplitude", part.strip()))
+        except InputError:
+            raise InputError("amplitude", text, self._ALLOWED) from None
+        if not 0 < x < math.pi:
+            raise InputError("amplitude", text, self._ALLOWED)
+        return x
+
+
+class MethodListType(_Type):
+    """A comma-separated list of integrator names, checked by the library."""
+
+    name = "methods"
+
+    def parse(self, text: str) -> list[str]:
+        from ..taylor import method_code
+
+        names = [s.strip() for s in text.split(",") if s.strip()]
+        if not names:
+            raise InputError("method", repr(text), "a comma-separated list of methods")
+        for n in names:
+            method_code(n)
+        return names
+
+
+ANGLE_RANGE = AngleRangeType()
+METHOD_LIST = MethodListType()
+
+
+def _save(draw, path, size=(7.0, 4.6)) -> None:
+    """Draw on a fresh figure and save it atomically (format from the extension)."""
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    from .._atomic import save_figure
+
+    fig, ax = plt.subplots(figsize=size, layout="constrained")
+    try:
+        draw(ax)
+        save_figure(fig, path, dpi=150)
+    finally:
+        plt.close(fig)
+
+
+@click.command()
+@click.option("--plot", type=click.Path(dir_okay=False),
+              help="Write the relative error of every formula over [0, 180) degrees to this PNG/SVG/PDF.")
+@json_option
+def approximations(plot, as_json):
+    """Classical period formulas against the exact (AGM) period: relative errors.
+
+    Small angle, the coursework's (9), Kidd-Fogg, Lima-Arun, Ganley, and the AGM
+    truncated after 1, 2, 3 iterations (Carvalhaes-Suppes).
+    """
+    import numpy as np
+
+    from .._atomic import check_writable
+    from ..approximations import approximation_errors
+
+    if plot:
+        check_writable("plot", plot)
+    table = approximation_errors(np.radians(TABLE_DEGREES))
+    fine = approximation_errors()  # 1000 amplitudes, 0.1 to 179.9 degrees
+    tols = (1e-2, 1e-4, 1e-6)
+    reach = {f.name: {f"{t:g}": math.degrees(fine.max_amplitude_within(f.name, t)) for t in tols}
+             for f in fine.formulas}
+    if plot:
+        from ..plots.beyond import approximation_errors as draw
+
+        _save(lambda ax: draw(ax, fine), plot)
+    if as_json:
+        emit_json({
+            "amplitudes_deg": list(TABLE_DEGREES),
+            "formulas": [{"name": f.name, "formula": f.label, "source": f.source,
+                          "relative_errors": table.errors[f.name],
+                          "max_amplitude_deg_within": reach[f.name]} for f in table.formulas],
+        })
+        return
+    names = [f.name for f in table.formulas]
+    click.echo("relative error T_approx/T - 1 (T: AGM to convergence)")
+    click.echo(f"{'alpha (deg)':>11} " + " ".join(f"{n:>12}" for n in names))
+    for i, deg in enumerate(TABLE_DEGREES):
+        click.echo(f"{deg:>11g} " + " ".join(f"{table.errors[n][i]:>12.3e}" for n in names))
+    click.echo("")
+    click.echo("largest amplitude (deg) up to which |error| stays within")
+    click.echo(f"{'formula':>12} " + " ".join(f"{t:>8g}" for t in tols))
+    for n in names:
+        click.echo(f"{n:>12} " + " ".join(f"{reach[n][f'{t:g}']:>8.1f}" for t in tols))
+    click.echo("")
+    for f in table.formulas:
+        click.echo(f"{f.name}: {f.label}  [{f.source}]")
+    if plot:
+        click.echo(f"wrote {plot}")
+
+
+@click.command()
+@click.option("-a", "--amplitude", "amplitudes", type=ANGLE_RANGE, default="1deg:179deg:1000", show_default=True,
+              help="Amplitudes START:STOP:COUNT (both ends included), e.g. 1deg:179deg:1000.")
+@click.option("--step", "steps", type=POSITIVE_LIST, default="1e-3,1e-4", show_default=True,
+              help="Steps h, comma-separated.")
+@click.option("--method", "methods", type=METHOD_LIST, default="taylor2,rk4,verlet", show_default=True,
+              help="Integrators, comma-separated: taylor2, rk4, verlet, taylor:P.")
+@click.option("-l", "--length", type=POSITIVE, default="1", show_default=True, help="Pendulum length l, m.")
+@click.option("--output", type=click.Path(dir_okay=False), help="Write every pendulum's row to this .csv or .parquet.")
+@click.option("--plot", type=click.Path(dir_okay=False), help="Write |period error| against amplitude to this PNG/SVG/PDF.")
+@click.option("--scheduler", metavar="ADDRESS", help="Run on this Dask scheduler (tcp://host:8786).")
+@g_option
+@json_option
+def sweep(amplitudes, steps, methods, length, output, plot, scheduler, g, as_json):
+    """The period error of each method over a range of amplitudes (many pendulums at once)."""
+    from .._atomic import check_writable
+    from ..sweep import sweep as run
+
+    if output:
+        check_writable("output", output)
+        if not output.lower().endswith((".csv", ".parquet")):
+            raise InputError("output", output, "a file name ending in .csv or .parquet")
+    if plot:
+        check_writable("plot", plot)
+    total = len(amplitudes) * len(steps) * len(methods)
+    with click.progressbar(length=total, label="pendulums", file=sys.stderr) as bar:
+        result = run(amplitudes, steps, methods, float(length), float(g), progress=bar.update, scheduler=scheduler)
+    if output:
+        result.write(output)
+    if plot:
+        from ..plots.beyond import sweep_errors
+
+        _save(lambda ax: sweep_errors(ax, result), plot)
+    summary = result.summary()
+    if as_json:
+        emit_json({"length": float(length), "g": float(g), "amplitudes": len(amplitudes),
+                   "output": output, "plot": plot, "summary": summary})
+        return
+    click.echo(f"{'method':>10} {'h':>8} {'found':>11} {'max |T_cubic - T|':>18} {'max rel':>10} {'steps':>12}")
+    for r in summary:
+        click.echo(f"{r['method']:>10} {r['step']:>8g} {r['found']:>5}/{r['pendulums']:<5} "
+                   f"{r['max_abs_cubic_error']:>18.3e} {r['max_rel_cubic_error']:>10.3e} {r['pendulum_steps']:>12}")
+    for path in (output, plot):
+        if path:
+            click.echo(f"wrote {path}")
