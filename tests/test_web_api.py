@@ -1,0 +1,364 @@
+"""The web explorer's JSON API, in process (FastAPI's TestClient): every endpoint, every kind of bad input.
+
+Reference values: the table of Figure 3 (``shared/spec.md``) and the period from
+mpmath's complete elliptic integral at 30 digits, ``T = 4 sqrt(l/g) K(sin^2(alpha/2))``
+(independent of the AGM loop of ``period.py``).
+"""
+from __future__ import annotations
+
+import math
+from pathlib import Path
+
+import mpmath
+import numpy as np
+import pytest
+from fastapi.testclient import TestClient
+
+from pendulab import taylor
+from pendulab.cli import main
+from pendulab.crossing import estimate_period
+from pendulab.web import api, create_app
+
+
+@pytest.fixture(scope="module")
+def client():
+    return TestClient(create_app())
+
+
+def ellipk_period(length: float, alpha: float, g: float = 9.80665) -> float:
+    """The period by mpmath's elliptic K (DLMF 19.2.8), at 30 digits."""
+    with mpmath.workdps(30):
+        m = mpmath.sin(mpmath.mpf(alpha) / 2) ** 2
+        return float(4 * mpmath.sqrt(mpmath.mpf(length) / mpmath.mpf(g)) * mpmath.ellipk(m))
+
+
+# Figure 3 of the coursework (l = 1, alpha = pi/4, h = 0.1), 12 significant digits (spec.md).
+FIGURE3 = {
+    0.0: (0.785398163397, 0.0),
+    0.1: (0.750726419819, -0.693434871572),
+    0.2: (0.647933915928, -1.33755362818),
+    0.3: (0.484585008774, -1.87713178299),
+    1.8: (0.569659507564, 1.6947608797),
+    1.9: (0.712689739829, 1.09586683808),
+    2.0: (0.790214993286, 0.413982837259),
+    2.1: (0.796774928412, -0.297068336875),
+}
+FIG3_QUERY = {"length": "1", "amplitude": "pi/4", "step": "0.1", "t_max": "2.1"}
+P5_QUERY = {"length": "3.5", "amplitude": "4pi/5", "step": "1e-3", "t_max": "10"}
+
+
+# ---------------------------------------------------------------- good requests
+
+def test_config_lists_the_methods_registered_now(client, monkeypatch):
+    body = client.get("/api/config").json()
+    assert [m["name"] for m in body["methods"]] == list(taylor.METHODS)
+    assert body["limits"] == {"max_steps": 10**7, "max_points": 10**6, "plot_points": 2000}
+    assert body["g_presets"]["earth"] == 9.80665
+    # A method registered after the app was built shows up, and can be simulated.
+    monkeypatch.setitem(taylor.METHODS, "taylor2-copy", taylor.METHODS["taylor2"])
+    assert "taylor2-copy" in [m["name"] for m in client.get("/api/config").json()["methods"]]
+    r = client.get("/api/simulate", params=FIG3_QUERY | {"method": "taylor2-copy"})
+    assert r.status_code == 200 and r.json()["input"]["method"] == "taylor2-copy"
+
+
+@pytest.mark.parametrize("amplitude, alpha", [("pi/4", math.pi / 4), ("45deg", math.pi / 4), ("4pi/5", 0.8 * math.pi),
+                                              ("144deg", 0.8 * math.pi), ("2.5", 2.5), ("0", 0.0)])
+def test_period_endpoint_against_elliptic_k(client, amplitude, alpha):
+    r = client.get("/api/period", params={"length": "3.5", "amplitude": amplitude})
+    assert r.status_code == 200
+    body = r.json()
+    assert body["amplitude"] == pytest.approx(alpha, rel=1e-15, abs=0)
+    assert body["exact"] == pytest.approx(ellipk_period(3.5, alpha), rel=1e-14)
+    assert body["small_angle"] == pytest.approx(2 * math.pi * math.sqrt(3.5 / 9.80665), rel=1e-15)
+
+
+def test_period_endpoint_takes_g(client):
+    body = client.get("/api/period", params={"length": "2", "amplitude": "1", "g": "1.62"}).json()
+    assert body["g"] == 1.62
+    assert body["exact"] == pytest.approx(ellipk_period(2, 1, 1.62), rel=1e-14)
+
+
+def test_simulate_reproduces_figure3(client):
+    r = client.get("/api/simulate", params=FIG3_QUERY)
+    assert r.status_code == 200
+    body = r.json()
+    assert body["n_steps"] == 21 and body["stride"] == 1 and body["points"] == 22
+    t = np.array(body["t"])
+    for t_ref, (z1, z2) in FIGURE3.items():
+        i = int(round(t_ref / 0.1))
+        assert t[i] == pytest.approx(t_ref, abs=1e-12)
+        assert body["theta"][i] == pytest.approx(z1, rel=5e-12, abs=1e-12)
+        assert body["omega"][i] == pytest.approx(z2, rel=5e-12, abs=1e-12)
+    assert body["units"] == {"t": "s", "theta": "rad", "omega": "rad/s", "period": "s"}
+    # Figure 2: the period lies in (2.0, 2.1) s.
+    est = body["period"]["estimate"]
+    assert est["bracket"] == pytest.approx([2.0, 2.1])
+    assert body["period"]["exact"] == pytest.approx(ellipk_period(1, math.pi / 4), rel=1e-14)
+
+
+def test_simulate_estimates_are_the_librarys(client):
+    body = client.get("/api/simulate", params=P5_QUERY).json()
+    alpha = 0.8 * math.pi
+    e = estimate_period(3.5, alpha, 1e-3)
+    got = body["period"]["estimate"]
+    assert body["period"]["reason"] is None
+    assert (got["j"], got["bracket"], got["linear"], got["cubic"]) == (e.j, list(e.bracket), e.linear, e.cubic)
+    assert got["cubic_error_estimate"] == e.cubic_error_estimate
+    exact = ellipk_period(3.5, alpha)
+    assert got["errors"]["linear"] == pytest.approx(abs(e.linear - exact), rel=1e-6)
+    assert got["errors"]["cubic"] == pytest.approx(abs(e.cubic - exact), rel=1e-6)
+    assert got["errors"]["bracket_mid"] == pytest.approx(abs(sum(e.bracket) / 2 - exact), rel=1e-6)
+    assert got["bracket"][0] < exact < got["bracket"][1] + 1e-3  # h = 1e-3: the bracket is off by O(h^2 T)
+
+
+def test_simulate_thins_a_long_trajectory_evenly(client):
+    q = {"length": "3.5", "amplitude": "4pi/5", "step": "1e-4", "t_max": "10", "points": "2000"}
+    body = client.get("/api/simulate", params=q).json()
+    assert body["n_steps"] == 100_000
+    assert 1000 < body["points"] <= 2000 == api.DEFAULT_PLOT_POINTS
+    k = body["stride"]
+    assert k == math.ceil(100_000 / 1999)
+    full = taylor.simulate(3.5, 0.8 * math.pi, 1e-4, 10.0)
+    idx = list(range(0, 100_001, k))
+    idx += [] if idx[-1] == 100_000 else [100_000]
+    assert body["theta"] == full.theta[idx].tolist()
+    assert body["omega"] == full.omega[idx].tolist()
+    assert body["t"][-1] == pytest.approx(10.0)
+
+
+@pytest.mark.parametrize("n, points", [(5, 10), (10, 10), (11, 10), (100, 7), (1001, 2), (10**6, 999)])
+def test_thin_keeps_ends_and_bound(n, points):
+    idx = api.thin(n, points)
+    assert idx[0] == 0 and idx[-1] == n - 1
+    assert len(idx) <= points and len(idx) == len(set(idx.tolist()))
+    assert len(idx) == min(n, points) or n > points
+
+
+def test_simulate_without_period_says_why(client):
+    # At rest nothing moves; a huge step sends the discrete pendulum over the top.
+    body = client.get("/api/simulate", params={"length": "1", "amplitude": "0", "step": "0.01", "t_max": "2"}).json()
+    assert body["period"]["estimate"] is None and "amplitude" in body["period"]["reason"]
+    assert body["theta"] == [0.0] * 201
+    body = client.get("/api/simulate", params={"length": "1", "amplitude": "3", "step": "0.5", "t_max": "20"}).json()
+    assert body["period"]["estimate"] is None and "over the top" in body["period"]["reason"]
+
+
+def test_simulate_blow_up_is_valid_json_with_nulls(client):
+    # h = 1 with c = -9.8: the Taylor map is unstable, theta overflows to inf then NaN.
+    r = client.get("/api/simulate", params={"length": "1", "amplitude": "3", "step": "1", "t_max": "2000", "points": "3000"})
+    assert r.status_code == 200
+    theta = r.json()["theta"]
+    assert theta[0] == 3.0 and None in theta
+
+
+@pytest.mark.parametrize("method", list(taylor.METHODS))
+def test_every_method_simulates(client, method):
+    body = client.get("/api/simulate", params=P5_QUERY | {"method": method}).json()
+    assert body["input"]["method"] == method
+    assert body["period"]["estimate"]["errors"]["cubic"] < 1e-3
+
+
+def test_trajectory_csv_is_the_full_trajectory(client):
+    r = client.get("/api/trajectory.csv", params=FIG3_QUERY)
+    assert r.status_code == 200 and r.headers["content-type"].startswith("text/csv")
+    assert "attachment" in r.headers["content-disposition"] and ".csv" in r.headers["content-disposition"]
+    lines = r.text.splitlines()
+    assert lines[0] == "t_s,theta_rad,omega_rad_per_s"
+    rows = np.array([[float(x) for x in line.split(",")] for line in lines[1:]])
+    assert rows.shape == (22, 3)
+    for t_ref, (z1, z2) in FIGURE3.items():
+        row = rows[int(round(t_ref / 0.1))]
+        assert row[1:] == pytest.approx([z1, z2], rel=5e-12, abs=1e-12)
+    # Full precision: the shortest repr of each double reads back to the same double.
+    full = taylor.simulate(1, math.pi / 4, 0.1, 2.1)
+    assert rows[:, 1].tolist() == full.theta.tolist()
+
+
+def test_trajectory_csv_thins_on_request(client):
+    r = client.get("/api/trajectory.csv", params=P5_QUERY | {"points": "101"})
+    assert len(r.text.splitlines()) == 1 + 101
+
+
+def test_convergence_errors_fall_like_the_method_order(client):
+    body = client.get("/api/convergence", params={"length": "3.5", "amplitude": "4pi/5", "steps": "1e-2,1e-3"}).json()
+    assert body["method"] == "taylor2" and body["order"] == 2
+    assert body["period"]["exact"] == pytest.approx(ellipk_period(3.5, 0.8 * math.pi), rel=1e-14)
+    (a, b) = body["rows"]
+    assert (a["step"], b["step"]) == (1e-2, 1e-3)
+    ratio = a["estimate"]["errors"]["cubic"] / b["estimate"]["errors"]["cubic"]
+    assert 10**1.7 < ratio < 10**2.3  # second order: h / 10 gives error / 100
+
+
+def test_convergence_default_steps(client):
+    body = client.get("/api/convergence", params={"length": "1", "amplitude": "pi/4"}).json()
+    steps = [r["step"] for r in body["rows"]]
+    assert steps[0] == pytest.approx(0.1) and steps[-1] == pytest.approx(1e-4) and len(steps) == 13
+
+
+# ---------------------------------------------------------------- static files, offline
+
+def test_page_and_its_files_are_local(client):
+    page = client.get("/")
+    assert page.status_code == 200 and "text/html" in page.headers["content-type"]
+    for needle in ("http://", "https://", "//cdn"):
+        assert needle not in page.text.replace('href="/api/docs"', "")
+    assert client.get("/static/app.js").status_code == 200
+    assert client.get("/static/style.css").headers["content-type"].startswith("text/css")
+
+
+def test_plotly_is_served_from_the_installed_package(client):
+    import plotly
+
+    r = client.get("/vendor/plotly.min.js")
+    assert r.status_code == 200
+    assert r.content == (Path(plotly.__file__).parent / "package_data" / "plotly.min.js").read_bytes()
+
+
+@pytest.mark.parametrize("path", ["/static/nothing.js", "/static/..%2fapp.py", "/static/%2e%2e/api.py", "/api/nothing", "/nothing"])
+def test_unknown_paths_are_json_404(client, path):
+    r = client.get(path)
+    assert r.status_code == 404 and "error" in r.json()
+
+
+def test_an_internal_error_is_500_and_the_server_keeps_serving(monkeypatch):
+    c = TestClient(create_app(), raise_server_exceptions=False)
+
+    def boom(params):
+        raise RuntimeError("a bug")
+
+    monkeypatch.setattr(api, "simulate_view", boom)
+    r = c.get("/api/simulate", params=FIG3_QUERY)
+    assert r.status_code == 500 and r.json()["error"]["message"] == "internal error: RuntimeError"
+    assert c.get("/api/period", params={"length": "1", "amplitude": "1"}).status_code == 200
+
+
+# ---------------------------------------------------------------- bad input: 422 naming the field
+
+def assert_422(r, field: str, allowed_part: str = ""):
+    assert r.status_code == 422, r.text[:300]
+    err = r.json()["error"]
+    assert err["field"] == field
+    assert allowed_part in err["allowed"]
+    assert err["message"].startswith(f"{field} = ") and err["allowed"] in err["message"]
+    return err
+
+
+SIM_ENDPOINTS = ["/api/simulate", "/api/trajectory.csv"]
+PENDULUM_ENDPOINTS = SIM_ENDPOINTS + ["/api/period", "/api/convergence"]
+
+BAD_NUMBERS = ["abc", "-1", "0", "nan", "inf", "-inf", "1e400", "1/0", "", "1e99999999", "9" * 70, "1,5", "0x10"]
+
+
+@pytest.mark.parametrize("endpoint", PENDULUM_ENDPOINTS)
+@pytest.mark.parametrize("field", ["length", "g"])
+@pytest.mark.parametrize("bad", BAD_NUMBERS)
+def test_bad_length_or_g(client, endpoint, field, bad):
+    r = client.get(endpoint, params=P5_QUERY | {field: bad})
+    if field == "g" and bad == "":  # empty counts as missing, and g defaults to the coursework's
+        assert r.status_code == 200
+        return
+    err = assert_422(r, field, "> 0")
+    if bad == "":
+        assert err["value"] == "(missing)"
+
+
+@pytest.mark.parametrize("endpoint", SIM_ENDPOINTS)
+@pytest.mark.parametrize("field", ["step", "t_max"])
+@pytest.mark.parametrize("bad", BAD_NUMBERS)
+def test_bad_step_or_t_max(client, endpoint, field, bad):
+    assert_422(client.get(endpoint, params=P5_QUERY | {field: bad}), field, "> 0")
+
+
+@pytest.mark.parametrize("endpoint", PENDULUM_ENDPOINTS)
+@pytest.mark.parametrize("bad", ["pi", "180deg", "4pi/4", "3.2", "-0.1", "-pi/4", "1e400", "abc", "45 degrees east", "1e99999999pi", "nan"])
+def test_bad_amplitude(client, endpoint, bad):
+    assert_422(client.get(endpoint, params=P5_QUERY | {"amplitude": bad}), "amplitude", "[0, pi)")
+
+
+@pytest.mark.parametrize("endpoint", PENDULUM_ENDPOINTS)
+@pytest.mark.parametrize("field", ["length", "amplitude"])
+def test_missing_pendulum_field(client, endpoint, field):
+    q = {k: val for k, val in P5_QUERY.items() if k != field}
+    assert assert_422(client.get(endpoint, params=q), field)["value"] == "(missing)"
+
+
+@pytest.mark.parametrize("endpoint", SIM_ENDPOINTS)
+@pytest.mark.parametrize("field", ["step", "t_max"])
+def test_missing_simulation_field(client, endpoint, field):
+    q = {k: val for k, val in P5_QUERY.items() if k != field}
+    assert assert_422(client.get(endpoint, params=q), field)["value"] == "(missing)"
+
+
+@pytest.mark.parametrize("endpoint", SIM_ENDPOINTS)
+def test_step_not_below_t_max(client, endpoint):
+    assert_422(client.get(endpoint, params=P5_QUERY | {"step": "10"}), "step", "< t_max")
+
+
+@pytest.mark.parametrize("endpoint", SIM_ENDPOINTS + ["/api/convergence"])
+@pytest.mark.parametrize("bad", ["rk5", "TAYLOR2", "taylor2; drop", "x" * 100])
+def test_unknown_method(client, endpoint, bad):
+    err = assert_422(client.get(endpoint, params=P5_QUERY | {"method": bad}), "method")
+    assert all(name in err["allowed"] for name in taylor.METHODS) or len(bad) > 64
+
+
+@pytest.mark.parametrize("endpoint", SIM_ENDPOINTS)
+def test_more_than_1e7_steps_is_refused(client, endpoint):
+    # t_max / h = 1e7 + 1 steps: refused before anything runs.
+    err = assert_422(client.get(endpoint, params=P5_QUERY | {"step": "1e-6", "t_max": "10.000001"}), "step", "1e+07")
+    assert "1e-06" in err["value"]
+    # A short trajectory, but /api/simulate also streams the period search over 1.5 T / h
+    # = 3e7 steps (T ~ 2.1e3 s for l = 1000 km): refused; the CSV runs no search and answers.
+    q = {"length": "1e6", "amplitude": "1", "step": "1e-4", "t_max": "1"}
+    if endpoint == "/api/simulate":
+        assert_422(client.get(endpoint, params=q), "step", "1e+07")
+    else:
+        assert len(client.get(endpoint, params=q).text.splitlines()) == 1 + 10_001
+
+
+@pytest.mark.parametrize("endpoint", SIM_ENDPOINTS)
+@pytest.mark.parametrize("bad", ["1", "0", "-5", "1000001", "1e3", "2.5", "many"])
+def test_bad_points(client, endpoint, bad):
+    assert_422(client.get(endpoint, params=P5_QUERY | {"points": bad}), "points", "[2, 1000000]")
+
+
+@pytest.mark.parametrize("bad, allowed", [("1e-2,-1", "steps > 0"), ("1e-2,,abc", "steps > 0"), (",".join(["0.01"] * 41), "1 to 40"),
+                                          ("1e-7", "1e+07"), ("0.01,1e99999", "steps > 0")])
+def test_bad_convergence_steps(client, bad, allowed):
+    q = {"length": "3.5", "amplitude": "4pi/5", "steps": bad}
+    assert_422(client.get("/api/convergence", params=q), "steps", allowed)
+
+
+def test_bad_input_answers_fast_even_when_huge(client):
+    # The exact parser would build a 10^99999999 integer: the web layer refuses it first.
+    for text in ("1e99999999", "1e-99999999", "1e99999999/3"):
+        assert_422(client.get("/api/period", params={"length": text, "amplitude": "1"}), "length")
+
+
+def test_unknown_parameters_are_ignored(client):
+    assert client.get("/api/period", params={"length": "1", "amplitude": "1", "colour": "red"}).status_code == 200
+
+
+# ---------------------------------------------------------------- the CLI command
+
+def test_serve_help(capsys):
+    assert main(["serve", "--help"]) == 0
+    out = capsys.readouterr().out
+    assert "--port" in out and "--host" in out and "127.0.0.1" in out
+
+
+def test_serve_on_a_busy_port_is_one_line_exit_2(capsys):
+    import socket
+
+    with socket.socket() as s:
+        s.bind(("127.0.0.1", 0))
+        s.listen()
+        port = s.getsockname()[1]
+        assert main(["serve", "--port", str(port)]) == 2
+    err = capsys.readouterr().err
+    assert err.count("\n") == 1 and f"127.0.0.1:{port}" in err and "Traceback" not in err
+
+
+@pytest.mark.parametrize("bad", ["0", "70000", "http"])
+def test_serve_bad_port(capsys, bad):
+    assert main(["serve", "--port", bad]) == 2
+    assert "--port" in capsys.readouterr().err
