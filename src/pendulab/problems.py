@@ -264,6 +264,8 @@ class Problem4:
         the exact motion ``theta(t)`` (Jacobi functions): the deviation between data points.
     taylor_error : float
         ``max_j |z1_j - theta(t_j)|``: the data's own error (Taylor method).
+    curve_t, curve_phi, curve_exact : ndarray
+        ``phi~`` and the exact ``theta`` on the fine grid (20 points per step), for plots.
     answer : str
         4(d)(ii) in words.
     """
@@ -283,6 +285,9 @@ class Problem4:
     exact_deviation: float
     exact_deviation_at: float
     taylor_error: float
+    curve_t: "np.ndarray"
+    curve_phi: "np.ndarray"
+    curve_exact: "np.ndarray"
     answer: str
 
     @property
@@ -314,7 +319,9 @@ def problem4(
     terms = " + ".join(f"{n} {lab}" if lab != "1" else n for n, lab in zip(fit.names, TRIG_LABELS))
     objective = f"E({', '.join(fit.names)}) = sum_(j=0)^({len(data.t) - 1}) (z1_j - ({terms})|_(t=t_j))^2"
     fine = np.linspace(data.t[0], data.t[-1], PROBLEM4_FINE * (len(data.t) - 1) + 1)
-    dev = np.abs(exact_motion(length, amplitude, fine, g).theta - evaluate(fit.coefficients, TRIG_BASIS, fine))
+    curve_phi = evaluate(fit.coefficients, TRIG_BASIS, fine)
+    curve_exact = exact_motion(length, amplitude, fine, g).theta
+    dev = np.abs(curve_exact - curve_phi)
     j = int(np.argmax(dev))
     taylor_err = float(np.max(np.abs(exact_motion(length, amplitude, data.t, g).theta - data.theta)))
     below = fit.max_deviation < PROBLEM4_TOLERANCE
@@ -340,6 +347,9 @@ def problem4(
         exact_deviation=float(dev[j]),
         exact_deviation_at=float(fine[j]),
         taylor_error=taylor_err,
+        curve_t=fine,
+        curve_phi=curve_phi,
+        curve_exact=curve_exact,
         answer=answer,
     )
 

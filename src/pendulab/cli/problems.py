@@ -1,0 +1,297 @@
+"""Commands of problems 1, 2, 4, 5: ``gravity``, ``newton``, ``fit``, ``quadrature``."""
+from __future__ import annotations
+
+import math
+import re
+from fractions import Fraction
+
+import click
+
+from .. import cases
+from ..errors import InputError
+from ..exact import parse_angle, parse_number
+from ._common import ANGLE, POSITIVE, _Type, emit_json, fmt, g_option, json_option
+
+_NUM = r"[+-]?(?:\d+\.?\d*|\.\d+)(?:[eE][+-]?\d+)?"
+_UNIT = re.compile(rf"^\s*(?P<num>{_NUM})\s*(?P<unit>[a-zA-Z]*)\s*$")
+
+
+class _Quantity(_Type):
+    """A number with an optional unit suffix, in SI; ``> 0`` or ``>= 0``."""
+
+    def __init__(self, units: dict[str, Fraction], default_unit: str, strict: bool):
+        self.units, self.default_unit, self.strict = units, default_unit, strict
+        self.name = "|".join(units)
+
+    def parse(self, text: str) -> float:
+        allowed = (
+            f"a finite number {'> 0' if self.strict else '>= 0'}, "
+            f"in {' or '.join(self.units)} (default {self.default_unit})"
+        )
+        m = _UNIT.match(text)
+        unit = (m["unit"] or self.default_unit) if m else None
+        if not m or unit not in self.units:
+            raise InputError("value", repr(text), allowed)
+        x = float(Fraction(m["num"]) * self.units[unit])
+        if not (math.isfinite(x) and (x > 0 if self.strict else x >= 0)):
+            raise InputError("value", text, allowed)
+        return x
+
+
+_M = {"m": Fraction(1), "cm": Fraction(1, 100), "mm": Fraction(1, 1000)}
+_S = {"s": Fraction(1), "ms": Fraction(1, 1000)}
+LENGTH = _Quantity(_M, "m", True)
+LENGTH_ERROR = _Quantity(_M, "m", False)
+PERIOD = _Quantity(_S, "s", True)
+PERIOD_ERROR = _Quantity(_S, "s", False)
+
+
+class _X0(_Type):
+    """A Newton start in ``(0, pi)``: ``1``, ``pi/3``, ``60deg``."""
+
+    name = "angle"
+
+    def parse(self, text: str) -> float:
+        x = float(parse_angle("x0", text))
+        if not 0 < x < math.pi:
+            raise InputError("x0", text, "an angle in (0, pi) rad, i.e. 0 < x0 < 180deg")
+        return x
+
+
+class _Round(_Type):
+    """Decimals to round the normal equations to: an integer 0..15, or ``none``."""
+
+    name = "0..15|none"
+
+    def parse(self, text: str):
+        s = text.strip().lower()
+        if s in ("none", "no", "off"):
+            return None
+        if not re.fullmatch(r"\d{1,2}", s) or int(s) > 15:
+            raise InputError("round", repr(text), "an integer in [0, 15] or 'none'")
+        return int(s)
+
+
+class _Counts(_Type):
+    """A comma-separated list of integers >= 1: ``1,10,100`` (``1e5`` accepted)."""
+
+    name = "list"
+
+    def parse(self, text: str) -> list[int]:
+        from ..quadrature import MAX_N
+
+        allowed = f"a comma-separated list of integers in [1, {MAX_N:.0e}]"
+        items = [s.strip() for s in text.split(",") if s.strip()]
+        if not items:
+            raise InputError("n", repr(text), allowed)
+        out = []
+        for s in items:
+            try:
+                x = parse_number("n", s).coef
+            except InputError:
+                raise InputError("n", repr(s), allowed) from None
+            if x.denominator != 1 or not 1 <= x <= MAX_N:
+                raise InputError("n", s, allowed)
+            out.append(int(x))
+        return out
+
+
+X0 = _X0()
+ROUND = _Round()
+COUNTS = _Counts()
+
+
+# --------------------------------------------------------------------------- gravity
+@click.command()
+@click.option("--length", type=LENGTH, default="115.2cm", show_default=True, help="Measured length l: 1.152, 1.152m, 115.2cm.")
+@click.option("--length-error", "length_error", type=LENGTH_ERROR, default="0.3cm", show_default=True,
+              help="Absolute error bound of l (m, cm or mm; >= 0).")
+@click.option("--period", type=PERIOD, default="2.1536", show_default=True, help="Measured period T, s (> 0).")
+@click.option("--period-error", "period_error", type=PERIOD_ERROR, default="2e-4", show_default=True,
+              help="Absolute error bound of T, s (>= 0).")
+@json_option
+def gravity(length, length_error, period, period_error, as_json):
+    """Problem 1: g = 4 pi^2 l / T^2 and its propagated error; guaranteed significant digits."""
+    from ..problems import problem1
+
+    r = problem1(length, length_error, period, period_error)
+    if as_json:
+        emit_json({
+            "length": r.length, "length_error": r.length_error, "period": r.period, "period_error": r.period_error,
+            "g": r.g, "abs_error": r.abs_error, "rel_error": r.rel_error, "dg_dl": r.dg_dl, "dg_dT": r.dg_dT,
+            "g_min": r.g_min, "g_max": r.g_max, "worst_error": r.worst_error, "error_bound": r.error_bound,
+            "significant_digits": r.significant_digits, "g_rounded": r.g_text, "rule": r.rule,
+            "abs_error_formula": r.abs_error_formula, "rel_error_formula": r.rel_error_formula,
+        })
+        return
+    click.echo(f"l = {r.length!r} +- {r.length_error!r} m,  T = {r.period!r} +- {r.period_error!r} s")
+    click.echo(f"g = 4 pi^2 l / T^2          = {r.g!r} m/s^2")
+    click.echo(f"absolute error (1st order)  {r.abs_error_formula}  = {r.abs_error:.6e} m/s^2")
+    click.echo(f"relative error (1st order)  {r.rel_error_formula}  = {r.rel_error:.6e}")
+    click.echo(f"exact range over the box    [{r.g_min!r}, {r.g_max!r}]  (worst error {r.worst_error:.6e})")
+    click.echo(f"significant digits guaranteed: {r.significant_digits}  (g = {r.g_text} m/s^2, error <= {r.error_bound:.3e})")
+    click.echo(f"rule: {r.rule}")
+
+
+# --------------------------------------------------------------------------- newton
+@click.command()
+@click.option("--length", type=POSITIVE, default=str(cases.NEWTON_LENGTH), show_default=True, help="Pendulum length l, m.")
+@click.option("--target", type=POSITIVE, default=str(cases.NEWTON_TARGET), show_default=True,
+              help="Target period of approximation (9), s.")
+@click.option("--x0", type=X0, default=None,
+              help="Starting value in (0, pi): 1, pi/3, 60deg. Default: the end of the convergence interval "
+                   "where f f'' > 0.")
+@g_option
+@json_option
+def newton(length, target, x0, g, as_json):
+    """Problem 2: the amplitude with T~(alpha) = target, by Newton's method on (9)."""
+    from ..problems import problem2
+
+    r = problem2(float(length), float(target), x0, float(g))
+    run, chk = r.run, r.interval
+    if as_json:
+        emit_json({
+            "length": r.equation.length, "target": r.equation.target, "g": r.equation.g, "p": r.equation.p,
+            "alpha": r.alpha, "alpha_degrees": r.alpha_degrees, "closed_form": r.closed_form,
+            "x0": r.x0, "x0_rule": r.x0_rule, "x0_in_interval": r.x0_in_interval,
+            "iterates": list(run.iterates), "values": list(run.values), "corrections": list(run.corrections),
+            "criterion": run.criterion, "stop_reason": run.stop_reason,
+            "q": list(run.q), "q_rounding": list(run.q_rounding), "k_max": run.k_max, "q_kmax": run.q_kmax,
+            "asymptotic_constant": run.asymptotic_constant, "ratios": list(r.ratios),
+            "rounding_level": run.rounding_level, "error_estimate": run.error_estimate,
+            "interval": [chk.a, chk.b], "interval_degrees": list(r.interval_degrees),
+            "interval_conditions": [{"name": c.name, "holds": c.holds, "detail": c.detail, **c.values}
+                                    for c in chk.conditions],
+            "justification": r.justification,
+        })
+        return
+    e = r.equation
+    click.echo(f"f(alpha) = (2 pi/p)(1 + sin^2(alpha/2)/4) - {e.target!r},  p = sqrt(g/l) = {e.p!r}")
+    a, b = r.interval_degrees
+    click.echo(f"interval [a, b] = [{a:g}, {b:g}] deg = [{chk.a!r}, {chk.b!r}] rad:")
+    for c in chk.conditions:
+        click.echo(f"  [{'ok' if c.holds else 'FAILS'}] {c.name}: {c.detail}")
+    click.echo(f"x0 = {r.x0!r} ({r.x0_rule}); {run.criterion}")
+    click.echo(f"{'k':>3} {'x_k (rad)':>22} {'f(x_k)':>12} {'q_k':>12} {'rounding of q_k':>16}")
+    for k, x in enumerate(run.iterates):
+        q = run.q[k] if k < len(run.q) else None
+        rho = f"{run.q_rounding[k]:.1e}" if k < len(run.q_rounding) else ""
+        qs = f"{q:.6g}" if q is not None else ""
+        mark = "  <- k_max" if k == run.k_max else ""
+        click.echo(f"{k:>3} {fmt(x, 17):>22} {run.values[k]:>12.3e} {qs:>12} {rho:>16}{mark}")
+    click.echo(f"k_max = {run.k_max}: the last q_k whose rounding error bound is <= 1%")
+    q_kmax = f"{run.q_kmax:.6g}" if run.q_kmax is not None else "none (no q_k free of rounding)"
+    click.echo(f"asymptotic constant |f''(z)/(2 f'(z))| = {run.asymptotic_constant:.6g}; q_kmax = {q_kmax}")
+    click.echo(f"alpha = {r.alpha!r} rad = {r.alpha_degrees!r} deg  (error estimate {run.error_estimate:.1e} rad)")
+
+
+# --------------------------------------------------------------------------- fit
+@click.command()
+@click.option("-l", "--length", type=POSITIVE, default=cases.PROBLEM4.length.text, show_default=True, help="Pendulum length l, m.")
+@click.option("-a", "--amplitude", type=ANGLE, default=cases.PROBLEM4.amplitude.text, show_default=True,
+              help="Amplitude alpha in [0, pi): 0.785, pi/4, 45deg.")
+@click.option("--step", type=POSITIVE, default=str(cases.PROBLEM4_STEP), show_default=True, help="Taylor step h, s.")
+@click.option("--t-max", "t_max", type=POSITIVE, default=None, help="End of the data; default ceil(T) with T from (8).")
+@click.option("--round", "decimals", type=ROUND, default=str(cases.PROBLEM4_ROUND), show_default=True,
+              help="Round the normal equations half away from zero to this many decimals (0..15, or none).")
+@click.option("--plot", type=click.Path(dir_okay=False), help="Write the data and the fitted phi to this PNG/SVG/PDF.")
+@g_option
+@json_option
+def fit(length, amplitude, step, t_max, decimals, plot, g, as_json):
+    """Problem 4: least-squares fit of the Taylor data by basis (10), via the normal equations."""
+    from .._atomic import check_writable
+    from ..problems import problem4
+
+    if plot:
+        check_writable("plot", plot)
+    r = problem4(float(length), float(amplitude), float(step), None if t_max is None else float(t_max),
+                 decimals, float(g))
+    f, d = r.fit, r.fit.definiteness
+    if plot:
+        from ..plots import problems as plots
+        from .core import _save
+
+        _save(lambda ax: plots.fit(ax, r), plot)
+    if as_json:
+        emit_json({
+            "length": r.length, "amplitude": r.amplitude, "step": r.step, "period": r.period,
+            "t_max": r.t_max, "t_max_rule": r.t_max_rule, "points": r.points,
+            "last_points": r.last_points, "round": f.decimals,
+            "normal_matrix": f.normal_matrix, "normal_rhs": f.normal_rhs,
+            "positive_definite": d.positive_definite, "symmetric": d.symmetric, "cholesky": d.cholesky,
+            "cholesky_diagonal": d.cholesky_diagonal, "eigenvalues": d.eigenvalues,
+            "min_eigenvalue": d.min_eigenvalue, "condition_number": d.condition_number,
+            "rounding_perturbation": d.rounding_perturbation,
+            "coefficients": f.coefficient_dict(),
+            "reference_coefficients": dict(zip(f.names, f.reference_coefficients.tolist())),
+            "coefficient_shift": f.coefficient_shift,
+            "ssd": f.ssd, "max_deviation": f.max_deviation, "max_deviation_at": f.argmax_deviation,
+            "tolerance": r.tolerance, "below_tolerance": r.below_tolerance,
+            "exact_deviation": r.exact_deviation, "taylor_error": r.taylor_error, "answer": r.answer,
+        })
+        return
+    click.echo(f"l = {r.length!r}, alpha = {r.amplitude!r}, h = {r.step!r}; T (8) = {r.period!r}; "
+               f"t_max = {r.t_max:g} ({r.t_max_rule}); {r.points} points")
+    click.echo("last 10 points (t_j, z1_j):")
+    for t, y in r.last_points.tolist():
+        click.echo(f"  {t:>8.4g} {y:>20.12f}")
+    click.echo(f"minimise {r.objective}")
+    how = "not rounded" if f.decimals is None else f"rounded half away from zero to {f.decimals} decimals"
+    click.echo(f"normal equations A c = r ({how}):")
+    w = max(len(f"{x:.{f.decimals if f.decimals is not None else 10}f}") for x in f.normal_matrix.ravel()) + 1
+    dec = f.decimals if f.decimals is not None else 10
+    for name, row, rhs in zip(f.names, f.normal_matrix.tolist(), f.normal_rhs.tolist()):
+        click.echo("  " + " ".join(f"{x:>{w}.{dec}f}" for x in row) + f"  | {rhs:>{w}.{dec}f}   ({name})")
+    click.echo(f"symmetric: {d.symmetric}; Cholesky: {'succeeds' if d.cholesky else 'fails'}; "
+               f"lambda_min = {d.min_eigenvalue:.6g}, cond_2 = {d.condition_number:.6g}; "
+               f"positive definite: {d.positive_definite}")
+    click.echo("coefficients:")
+    for name, c in f.coefficient_dict().items():
+        click.echo(f"  {name:>6} = {c:+.12f}")
+    click.echo(f"rounding moves the coefficients by at most {f.coefficient_shift:.3e} (vs numpy.linalg.lstsq)")
+    click.echo(f"sum of squared deviations = {f.ssd:.6e}")
+    click.echo(f"max |z1_j - phi(t_j)| = {f.max_deviation:.6e} at t = {f.argmax_deviation:g}")
+    click.echo(r.answer)
+
+
+# --------------------------------------------------------------------------- quadrature
+@click.command()
+@click.option("-l", "--length", type=POSITIVE, default=cases.PROBLEM5.length.text, show_default=True, help="Pendulum length l, m.")
+@click.option("-a", "--amplitude", type=ANGLE, default=cases.PROBLEM5.amplitude.text, show_default=True,
+              help="Amplitude alpha in [0, pi): 4pi/5, 144deg.")
+@click.option("--n", "ns", type=COUNTS, default="1,10,100,1000,10000,100000", show_default=True,
+              help="Comma-separated numbers of subintervals.")
+@click.option("--substitution", is_flag=True,
+              help="Also integrate after sin(theta/2) = sin(alpha/2) sin(phi), which removes the singularity.")
+@g_option
+@json_option
+def quadrature(length, amplitude, ns, substitution, g, as_json):
+    """Problem 5: the period integral (1) by the composite 3-point Gauss rule (11)."""
+    from ..problems import problem5
+
+    r = problem5(float(length), float(amplitude), ns, substitution, float(g))
+    if as_json:
+        rows = []
+        for row in r.rows:
+            d = {"n": row.n, "period": row.period, "error": row.error, "rate": row.rate}
+            if substitution:
+                d |= {"substitution_period": row.substitution_period, "substitution_error": row.substitution_error,
+                      "substitution_rate": row.substitution_rate}
+            rows.append(d)
+        emit_json({"length": r.length, "amplitude": r.amplitude, "g": r.g, "exact": r.exact,
+                   "single": r.single, "composite10": r.composite10, "rows": rows,
+                   "answer_5a": r.answer_5a, "rate_explanation": r.rate_explanation})
+        return
+    click.echo(f"l = {r.length!r}, alpha = {r.amplitude!r}; exact T (8) = {r.exact!r} s")
+    head = f"{'n':>10} {'T ~ S_n':>20} {'|error|':>11} {'rate':>6}"
+    if substitution:
+        head += f" {'T ~ S_n (subst.)':>20} {'|error|':>11}"
+    click.echo(head)
+    for row in r.rows:
+        rate = f"{row.rate:6.3f}" if row.rate is not None else f"{'':>6}"
+        line = f"{row.n:>10} {row.period:>20.15g} {row.error:>11.3e} {rate}"
+        if substitution:
+            line += f" {row.substitution_period:>20.15g} {row.substitution_error:>11.3e}"
+        click.echo(line)
+    click.echo(f"5(a): {r.answer_5a}")
+    click.echo(r.rate_explanation)
