@@ -1,0 +1,125 @@
+"""The exact motion (motion.py) against mpmath's Jacobi elliptic functions."""
+import math
+
+import mpmath
+import numpy as np
+import pytest
+
+from pendulab.errors import InputError
+from pendulab.motion import KP_SCIPY, energy, exact_motion, global_error, jacobi, quarter_period
+from pendulab.period import agm_period
+from pendulab.taylor import simulate
+
+G = 9.80665
+
+
+def mp_motion(length, alpha, t, dps=40):
+    """theta, theta' from mpmath: sin(theta/2) = k sn(K - w t | k^2), cos(theta/2) = dn, theta' = -2 k w cn.
+
+    Inputs are the exact binary values of the doubles; everything else at ``dps`` digits.
+    """
+    with mpmath.workdps(dps):
+        a = mpmath.mpf(alpha)
+        k = mpmath.sin(a / 2)
+        m = k * k
+        w = mpmath.sqrt(mpmath.mpf(G) / mpmath.mpf(length))
+        u = mpmath.ellipk(m) - w * mpmath.mpf(t)
+        sn, cn, dn = (mpmath.ellipfun(f, u, m=m) for f in ("sn", "cn", "dn"))
+        return float(2 * mpmath.atan2(k * sn, dn)), float(-2 * k * w * cn)
+
+
+# Amplitudes from small to within 1e-12 of pi: both the scipy path (k' >= 0.1) and the AGM path.
+AMPLITUDES = [1e-3, 0.5, math.pi / 4, 2.0, 2.9, 3.0, 3.14, math.pi - 1e-4, math.pi - 1e-8, math.pi - 1e-12]
+
+
+@pytest.mark.parametrize("alpha", AMPLITUDES)
+def test_exact_motion_matches_mpmath(alpha):
+    length = 2.0800838231
+    period = agm_period(length, alpha)
+    t = np.linspace(0, 2.5 * period, 17)
+    ex = exact_motion(length, alpha, t)
+    ref = np.array([mp_motion(length, alpha, ti) for ti in t])
+    # Tolerance: the time is rounded to a double (w t has relative error ~1e-16, over
+    # 2.5 periods of up to ~40 rad that moves theta by ~1e-14); nothing else is lost.
+    assert np.max(np.abs(ex.theta - ref[:, 0])) < 3e-14
+    w = math.sqrt(G / length)
+    assert np.max(np.abs(ex.omega - ref[:, 1])) < 3e-14 * w * 4
+
+
+def test_scipy_alone_loses_digits_near_pi_and_the_fallback_does_not():
+    """Why the AGM from k' exists: scipy's ellipj(u, m = k^2) near alpha = pi."""
+    from scipy.special import ellipj
+
+    alpha = math.pi - 1e-8
+    k = math.sin(alpha / 2)
+    u = np.linspace(0.1, 0.99, 9) * quarter_period(alpha)
+    sn, cn, dn, _ = ellipj(u, k * k)
+    naive = 2 * np.arctan2(k * sn, dn)
+    with mpmath.workdps(40):
+        m = mpmath.sin(mpmath.mpf(alpha) / 2) ** 2
+        ref = np.array([float(2 * mpmath.atan2(mpmath.sqrt(m) * mpmath.ellipfun("sn", ui, m=m),
+                                               mpmath.ellipfun("dn", ui, m=m))) for ui in u])
+    ours = jacobi(u, alpha)
+    mine = 2 * np.arctan2(k * ours[0], ours[2])
+    assert np.max(np.abs(naive - ref)) > 1e-10  # scipy alone: digits lost
+    assert np.max(np.abs(mine - ref)) < 1e-14
+
+
+def test_quarter_period_matches_mpmath_near_pi():
+    for alpha in (0.3, 3.0, math.pi - 1e-10):
+        with mpmath.workdps(40):
+            ref = mpmath.ellipk(mpmath.sin(mpmath.mpf(alpha) / 2) ** 2)
+        assert quarter_period(alpha) == pytest.approx(float(ref), rel=4e-16)
+
+
+@pytest.mark.parametrize("kp", [1.5 * KP_SCIPY, 0.5, 0.95])
+def test_jacobi_paths_agree_where_scipy_is_accurate(kp):
+    # Above the switch (k' >= KP_SCIPY) scipy's ellipj is accurate: the AGM from k' must agree.
+    from scipy.special import ellipj
+
+    from pendulab.motion import _jacobi_agm
+
+    k = math.sqrt(1 - kp * kp)
+    u = np.linspace(-7, 7, 29)
+    s1, s2 = _jacobi_agm(u, k, kp), ellipj(u, k * k)[:3]
+    for x, y in zip(s1, s2):
+        assert np.all(np.abs(x - y) < 1e-15 * (1 + np.abs(u)))  # rounding grows with |u|
+
+
+def test_motion_is_periodic_and_starts_at_rest():
+    alpha, length = 2.5, 1.0
+    T = agm_period(length, alpha)  # the AGM period (8), an independent computation
+    ex = exact_motion(length, alpha, [0.0, T / 4, T / 2, T])
+    assert ex.theta[0] == pytest.approx(alpha, abs=1e-15)
+    assert ex.omega[0] == pytest.approx(0, abs=1e-15)
+    assert ex.theta[1] == pytest.approx(0, abs=1e-14)  # bottom at a quarter period
+    assert ex.theta[2] == pytest.approx(-alpha, abs=1e-14)
+    assert ex.theta[3] == pytest.approx(alpha, abs=1e-14)
+
+
+def test_exact_motion_conserves_energy():
+    alpha, length = math.pi - 1e-5, 0.5
+    t = np.linspace(0, 30, 301)
+    ex = exact_motion(length, alpha, t)
+    e = energy(ex.theta, ex.omega, length)
+    assert np.max(np.abs(e + G / length * math.cos(alpha))) < 1e-12 * G / length
+
+
+def test_global_error_of_figure3():
+    # Figure 3 of the coursework: z1 at t = 2.1 is 0.796774928412 (12 digits, spec.md).
+    tr = simulate(1, math.pi / 4, 0.1, 2.1)
+    ge = global_error(tr)
+    theta_ref, omega_ref = mp_motion(1.0, math.pi / 4, 2.1)
+    assert ge.theta_error[-1] == pytest.approx(0.796774928412 - theta_ref, abs=1e-12)
+    assert ge.omega_error[-1] == pytest.approx(-0.297068336875 - omega_ref, abs=1e-11)
+    assert ge.max_theta_error >= abs(ge.theta_error[-1])
+    assert abs(ge.theta_error[0]) <= 2.3e-16 and ge.energy_drift[0] == pytest.approx(0, abs=1e-15)
+
+
+def test_bad_inputs():
+    with pytest.raises(InputError, match="amplitude"):
+        exact_motion(1, math.pi, [0.0])
+    with pytest.raises(InputError, match="t = nan"):
+        exact_motion(1, 1.0, [0.0, math.nan])
+    with pytest.raises(InputError, match="length"):
+        exact_motion(0, 1.0, 1.0)
