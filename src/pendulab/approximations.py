@@ -15,7 +15,10 @@ References
    pendulum oscillating beyond the small angle regime", Am. J. Phys. 74, 892-895 (2006):
    ``-T0 ln(cos(alpha/2)) / (1 - cos(alpha/2))``.
 .. [G]  W. P. Ganley, "Simple pendulum approximation", Am. J. Phys. 53, 73-76 (1985):
-   ``T0 sqrt(F alpha / sin(F alpha))``, ``F = sqrt(3)/2``.
+   ``T0 sqrt(F alpha / sin(F alpha))`` with ``F`` "approximately ``sqrt(3)/2``"; this
+   module takes ``F = sqrt(3)/2`` exactly, the value that reproduces the ``alpha^2/16``
+   term of the exact series (R. R. Parwani, arXiv:physics/0303036). With it the error
+   stays within 1e-3 up to 94 degrees (Ganley's abstract: 100 degrees with his fitted F).
 .. [CS] C. G. Carvalhaes, P. Suppes, "Approximations for the period of the simple
    pendulum based on the arithmetic-geometric mean", Am. J. Phys. 76, 1150-1154 (2008):
    ``T0 / v_n``, ``v_n = (a_n + b_n)/2`` after ``n`` iterations of (7).
@@ -50,10 +53,10 @@ def _kidd_fogg(alpha: np.ndarray) -> np.ndarray:
 
 def _lima_arun(alpha: np.ndarray) -> np.ndarray:
     # 1 - cos(a/2) = 2 sin^2(a/4) without cancellation; the limit at a = 0 is 1.
-    c = np.cos(alpha / 2)
+    # ln(cos(a/2)) = log1p(-(1 - cos(a/2))): log(c) would lose digits where c -> 1.
     one_minus_c = 2 * np.sin(alpha / 4) ** 2
     with np.errstate(invalid="ignore", divide="ignore"):
-        r = -np.log(c) / one_minus_c
+        r = -np.log1p(-one_minus_c) / one_minus_c
     return np.where(alpha == 0, 1.0, r)
 
 
@@ -109,7 +112,7 @@ def approximate_period(name: str, length: Any, amplitude: Any, g: Any = 9.80665)
     t0 = 2 * math.pi * math.sqrt(v.positive("length", length) / v.positive("g", g))
     alpha = np.asarray(_check_amplitudes(amplitude), dtype=float)
     r = t0 * formula.ratio(alpha)
-    return float(r) if r.ndim == 0 else r
+    return float(r) if np.ndim(r) == 0 else r
 
 
 def _formula(name: str) -> Formula:

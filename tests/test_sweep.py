@@ -1,0 +1,139 @@
+"""Sweeps of many pendulums: equal to one-at-a-time estimates, files, Dask, CLI."""
+import json
+import math
+
+import numpy as np
+import pyarrow.csv as pacsv
+import pyarrow.parquet as pq
+import pytest
+
+from pendulab.cli import main
+from pendulab.crossing import estimate_period
+from pendulab.errors import InputError
+from pendulab.interpolation import inverse_cubic
+from pendulab.period import agm_period
+from pendulab.sweep import inverse_cubic_rows, sweep
+
+AMPLITUDES = np.radians([5.0, 45.0, 120.0, 170.0, 179.0])
+
+
+@pytest.mark.parametrize("method", ["taylor2", "rk4", "verlet", "taylor:4"])
+def test_sweep_equals_estimate_period_bit_for_bit(method):
+    lengths = np.array([0.5, 1.0, 2.0800838231, 3.5, 1.0])
+    r = sweep(AMPLITUDES, [1e-2, 1e-3], [method], lengths)
+    assert len(r) == 10
+    for row in range(len(r)):
+        est = estimate_period(r["length"][row], r["amplitude"][row], r["step"][row], method=method)
+        assert r["status"][row] == "found"
+        assert r["steps"][row] == est.j + 2
+        assert r["linear"][row] == est.linear
+        assert r["cubic"][row] == est.cubic
+        assert r["cubic_error_estimate"][row] == est.cubic_error_estimate
+        assert r["exact"][row] == agm_period(r["length"][row], r["amplitude"][row])
+
+
+def test_inverse_cubic_rows_equals_inverse_cubic():
+    rng = np.random.default_rng(1)
+    z2 = np.sort(rng.normal(size=(20, 5)), axis=1)[:, ::-1]  # decreasing, distinct
+    t = np.cumsum(rng.uniform(0.1, 1, size=(20, 5)), axis=1)
+    p, err = inverse_cubic_rows(z2[:, 1:], t[:, 1:], z2[:, 0], t[:, 0])
+    for i in range(20):
+        ref = inverse_cubic(z2[i, 1:], t[i, 1:], (z2[i, 0], t[i, 0]))
+        assert p[i] == pytest.approx(ref.value, rel=1e-14)
+        assert err[i] == pytest.approx(ref.error_estimate, rel=1e-12)
+
+
+def test_error_falls_with_the_step_and_failures_are_reported():
+    r = sweep(np.radians([30.0, 179.5]), [0.2, 1e-2, 1e-3], ["taylor2"])
+    big = r.select("taylor2", 0.2)
+    # h = 0.2 and 1e-2 at 179.5 degrees: taylor2's energy error takes the discrete pendulum
+    # over the top; the row says so (status) and carries NaN, not a guess.
+    assert big["status"][1] == "left_oscillation"
+    assert math.isnan(big["cubic"][1]) and math.isnan(big["cubic_error"][1])
+    e2 = abs(r.select("taylor2", 1e-2)["cubic_error"][0])
+    e3 = abs(r.select("taylor2", 1e-3)["cubic_error"][0])
+    assert 50 < e2 / e3 < 200  # order 2: a factor 100 for h / 10
+    summary = r.summary()
+    assert [s["step"] for s in summary] == [0.2, 1e-2, 1e-3]
+    assert [s["found"] for s in summary] == [1, 1, 2]
+
+
+def test_progress_counts_every_pendulum():
+    seen = []
+    sweep(np.radians(np.linspace(10, 80, 25)), [1e-2, 5e-3], ["rk4", "verlet"], progress=seen.append, chunk=7)
+    assert sum(seen) == 25 * 2 * 2 and max(seen) == 7
+
+
+@pytest.mark.parametrize("suffix", [".csv", ".parquet"])
+def test_write_round_trip(tmp_path, suffix):
+    r = sweep(np.radians([20.0, 60.0]), [1e-2], ["taylor2", "rk4"])
+    path = tmp_path / f"sweep{suffix}"
+    r.write(path)
+    table = pacsv.read_csv(path) if suffix == ".csv" else pq.read_table(path)
+    assert table.column("method").to_pylist() == ["taylor2", "taylor2", "rk4", "rk4"]
+    assert np.array_equal(table.column("cubic").to_numpy(), r["cubic"])  # full precision
+    assert [p.name for p in tmp_path.iterdir()] == [path.name]  # no temporary left behind
+
+
+def test_bad_inputs(tmp_path):
+    with pytest.raises(InputError, match="method"):
+        sweep([0.5], [1e-2], ["taylor:0"])
+    with pytest.raises(InputError, match="step"):
+        sweep([0.5], [0.0], ["rk4"])
+    with pytest.raises(InputError, match="amplitude"):
+        sweep([0.5, math.pi], [1e-2])
+    with pytest.raises(InputError, match="amplitude"):
+        sweep([], [1e-2])
+    with pytest.raises(InputError, match="lengths"):
+        sweep([0.5, 0.6], [1e-2], lengths=[1.0, 2.0, 3.0])
+    r = sweep([0.5], [1e-2])
+    with pytest.raises(InputError, match="output"):
+        r.write(tmp_path / "x.txt")
+    with pytest.raises(InputError, match="output"):
+        r.write(tmp_path / "missing" / "x.csv")
+
+
+def test_dask_cluster_gives_the_same_result():
+    distributed = pytest.importorskip("dask.distributed")  # part of the test extra: always there
+    amplitudes = np.radians(np.linspace(1, 179, 23))
+    local = sweep(amplitudes, [1e-2, 2e-3], ["taylor2", "rk4"], lengths=1.3, chunk=5)
+    with distributed.LocalCluster(n_workers=1, threads_per_worker=2, processes=False, protocol="tcp",
+                                  host="127.0.0.1", dashboard_address=None) as cluster:
+        assert cluster.scheduler_address.startswith("tcp://127.0.0.1:")
+        seen = []
+        remote = sweep(amplitudes, [1e-2, 2e-3], ["taylor2", "rk4"], lengths=1.3, chunk=5,
+                       scheduler=cluster.scheduler_address, progress=seen.append)
+    assert sum(seen) == len(local)
+    assert local.columns.keys() == remote.columns.keys()
+    for key, col in local.columns.items():
+        assert np.array_equal(col, remote.columns[key], equal_nan=col.dtype.kind == "f"), key
+
+
+def test_unreachable_scheduler_is_one_clear_error():
+    with pytest.raises(InputError, match="scheduler"):
+        sweep([0.5], [1e-2], scheduler="tcp://127.0.0.1:9")  # port 9 (discard): nothing listens
+
+
+def test_cli_sweep(tmp_path, capsys):
+    out, plot = tmp_path / "s.parquet", tmp_path / "s.png"
+    args = ["sweep", "--amplitude", "10deg:170deg:9", "--step", "1e-2,1e-3", "--method", "taylor2,taylor:3",
+            "--output", str(out), "--plot", str(plot), "--json"]
+    assert main(args) == 0
+    doc = json.loads(capsys.readouterr().out)
+    assert [(s["method"], s["step"]) for s in doc["summary"]] == [
+        ("taylor2", 0.01), ("taylor2", 0.001), ("taylor:3", 0.01), ("taylor:3", 0.001)]
+    assert pq.read_table(out).num_rows == 36 and plot.stat().st_size > 10_000
+
+
+@pytest.mark.parametrize("args,needle", [
+    (["--amplitude", "170deg:10deg:9"], "--amplitude = 170deg:10deg:9"),  # reversed
+    (["--amplitude", "10deg:10deg:9"], "empty or reversed"),
+    (["--amplitude", "1deg:180deg:9"], "--amplitude"),
+    (["--method", "taylor:0"], "--method = 'taylor:0'"),
+    (["--step", "0"], "--step"),
+    (["--output", "out.xlsx"], "--output"),
+])
+def test_cli_sweep_bad_input(args, needle, capsys):
+    assert main(["sweep", *args]) == 2
+    err = capsys.readouterr().err
+    assert needle in err and len(err.strip().splitlines()) == 1 and "Traceback" not in err
