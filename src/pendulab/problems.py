@@ -187,7 +187,7 @@ def problem2(
     (Fourier's condition: the iterates then approach the root monotonically).
     """
     from . import _validate as v
-    from .errors import InputError
+    from .errors import InputError, NumericalError
     from .newton import PeriodEquation
 
     eq = PeriodEquation(length, target, g)
@@ -200,7 +200,11 @@ def problem2(
     else:
         start = float(x0)
         rule = "given"
-    run = eq.newton(start)
+    try:
+        run = eq.newton(start)
+    except NumericalError as exc:
+        lo, hi = (round(math.degrees(t), 9) for t in (chk.a, chk.b))
+        raise NumericalError(f"{exc}, e.g. [{lo:g}, {hi:g}] deg") from None
     d = [abs(b - a) for a, b in zip(run.iterates, run.iterates[1:])]
     ratios = tuple(d[k + 1] / d[k] if d[k] > 0 else None for k in range(len(d) - 1))
     a_deg = round(math.degrees(chk.a), 9)

@@ -1,0 +1,109 @@
+"""CLI: gravity, newton, fit, quadrature; every bad input of issue 3."""
+import math
+import subprocess
+import sys
+
+import pytest
+from scipy.optimize import brentq
+
+from conftest import assert_one_line_error
+from pendulab.period import agm_period
+
+
+def test_gravity_json_and_units(cli):
+    data = cli("gravity", "--json").json
+    for key in ("g", "abs_error", "rel_error", "significant_digits", "rule"):
+        assert key in data
+    assert data["g"] == pytest.approx(4 * math.pi**2 * 1.152 / 2.1536**2, rel=1e-15)
+    assert data["significant_digits"] == 2
+    same = [cli("gravity", "--length", s, "--length-error", e, "--json").json
+            for s, e in (("1.152m", "0.003m"), ("1.152", "0.003"), ("1152mm", "3mm"))]
+    assert all(d["g"] == data["g"] and d["abs_error"] == data["abs_error"] for d in same)
+    out = cli("gravity").out
+    assert "significant digits guaranteed: 2" in out and "rule:" in out
+
+
+def test_newton_json(cli):
+    data = cli("newton", "--json").json
+    for key in ("alpha", "alpha_degrees", "iterates", "q", "k_max", "asymptotic_constant", "interval", "error_estimate"):
+        assert key in data
+    p = math.sqrt(9.80665 / 0.5)
+    z = brentq(lambda a: 2 * math.pi / p * (1 + math.sin(a / 2) ** 2 / 4) - 1.5, 0.1, 3.0, xtol=1e-16)
+    assert data["alpha"] == pytest.approx(z, abs=4e-15)
+    assert data["alpha_degrees"] == pytest.approx(math.degrees(z), abs=1e-12)
+    assert data["interval"][0] < z < data["interval"][1]
+    assert all(c["holds"] for c in data["interval_conditions"])
+    start = cli("newton", "--x0", "50deg", "--json").json
+    assert start["x0"] == pytest.approx(math.radians(50)) and start["alpha"] == pytest.approx(z, abs=4e-15)
+    text = cli("newton").out
+    assert "k_max = 1" in text and "deg" in text
+
+
+def test_fit_json_and_plot(cli, tmp_path):
+    plot = tmp_path / "fit.png"
+    res = cli("fit", "--plot", plot, "--json")
+    assert res.code == 0, res.err
+    data = res.json
+    for key in ("points", "last_points", "normal_matrix", "normal_rhs", "positive_definite", "coefficients",
+                "ssd", "max_deviation"):
+        assert key in data
+    assert data["points"] == 401 and len(data["last_points"]) == 10
+    assert data["positive_definite"] is True
+    assert list(data["coefficients"]) == ["gamma", "a0", "b0", "a1", "b1", "a2", "b2"]
+    assert len(data["normal_matrix"]) == 7 and data["normal_matrix"][0][0] == 401.0
+    assert all(abs(x * 1e6 - round(x * 1e6)) < 1e-6 for row in data["normal_matrix"] for x in row)
+    assert data["max_deviation"] > 1e-5 and data["below_tolerance"] is False
+    assert plot.read_bytes().startswith(b"\x89PNG")
+    assert [p.name for p in tmp_path.iterdir()] == ["fit.png"]
+    assert cli("fit", "--t-max", "6", "--round", "none", "--json").json["points"] == 601
+    assert "normal equations" in cli("fit").out
+
+
+def test_quadrature_json(cli):
+    data = cli("quadrature", "--n", "1,10,100", "--json").json
+    exact = agm_period(3.5, 4 * math.pi / 5, iterations=7)
+    assert data["exact"] == exact
+    assert [r["n"] for r in data["rows"]] == [1, 10, 100]
+    assert all(r["error"] == abs(r["period"] - exact) for r in data["rows"])
+    assert "substitution_period" not in data["rows"][0]
+    sub = cli("quadrature", "--n", "10,100", "--substitution", "--json").json
+    assert sub["rows"][1]["substitution_error"] < 1e-13
+    assert "5(a)" in cli("quadrature", "--n", "1e1,1e2", "--substitution").out
+
+
+@pytest.mark.parametrize("args, fragment", [
+    (("gravity", "--length-error", "-0.3cm"), "--length-error"),
+    (("gravity", "--period-error", "-2e-4"), "--period-error"),
+    (("gravity", "--period", "0"), "--period"),
+    (("gravity", "--length", "5furlong"), "--length"),
+    (("gravity", "--length", "nan"), "--length"),
+    (("gravity", "--period-error", "3"), "--period-error"),
+    (("quadrature", "--n", "0"), "--n"),
+    (("quadrature", "--n", "10,-1"), "--n"),
+    (("quadrature", "--n", "1.5"), "--n"),
+    (("quadrature", "--n", "abc"), "--n"),
+    (("quadrature", "-a", "pi"), "--amplitude"),
+    (("fit", "--round", "-1"), "--round"),
+    (("fit", "--round", "16"), "--round"),
+    (("fit", "--round", "2.5"), "--round"),
+    (("fit", "--round", "six"), "--round"),
+    (("fit", "--step", "0"), "--step"),
+    (("fit", "--t-max", "0.005"), "--step"),
+    (("newton", "--x0", "0"), "--x0"),
+    (("newton", "--x0", "pi"), "--x0"),
+    (("newton", "--x0", "4"), "--x0"),
+    (("newton", "--x0", "-1deg"), "--x0"),
+    (("newton", "--x0", "1deg"), "left the domain"),
+    (("newton", "--target", "1.0"), "--target"),
+    (("newton", "--target", "1.8"), "--target"),
+    (("newton", "--length", "0"), "--length"),
+])
+def test_bad_inputs(cli, args, fragment):
+    assert_one_line_error(cli(*args), fragment)
+
+
+def test_module_import_stays_light():
+    code = ("import sys, pendulab.cli.problems\n"
+            "print(sorted(m for m in ('numba', 'scipy', 'matplotlib') if m in sys.modules))\n")
+    res = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, timeout=120)
+    assert res.stdout.strip() == "[]", res.stderr

@@ -1,0 +1,145 @@
+"""Problem 5: rule (11), composite S_n, the singular period integral (1)."""
+import math
+import tracemalloc
+
+import mpmath
+import numpy as np
+import pytest
+from scipy.integrate import quad
+
+from pendulab.errors import InputError
+from pendulab.period import agm_period, period_mp
+from pendulab.problems import problem5
+from pendulab.quadrature import (
+    GAUSS3, Rule, composite, period_integrand, period_prefactor, quadrature_period, substituted_integrand,
+)
+
+L, ALPHA = 3.5, 4 * math.pi / 5  # problem 5
+
+
+def s_n_mp(n, dps=40):
+    """S_n of rule (11) for the integral in (1), in mpmath at 40 digits, written from (11)."""
+    with mpmath.workdps(dps):
+        a, b = mpmath.mpf(0), mpmath.mpf(ALPHA)  # the double alpha, as the code integrates
+        f = lambda th: 1 / mpmath.sqrt(mpmath.cos(th) - mpmath.cos(b))  # noqa: E731
+        h = (b - a) / n
+        r = mpmath.sqrt(mpmath.mpf(3) / 5)
+        total = 0
+        for i in range(n):
+            lo, hi = a + i * h, a + (i + 1) * h
+            m, mu = (lo + hi) / 2, (hi - lo) / 2
+            total += (hi - lo) / 18 * (5 * f(m - r * mu) + 8 * f(m) + 5 * f(m + r * mu))
+        return 4 * mpmath.sqrt(mpmath.mpf(L) / (2 * mpmath.mpf("9.80665"))) * total
+
+
+def test_rule_11_is_gauss_legendre_3():
+    x, w = np.polynomial.legendre.leggauss(3)
+    assert np.allclose(GAUSS3.nodes, x, rtol=0, atol=1e-15)
+    assert np.allclose(GAUSS3.weights, w, rtol=0, atol=1e-15)
+    assert GAUSS3.degree == 5
+
+
+def test_rule_checks_itself():
+    with pytest.raises(ValueError, match="sum"):
+        Rule("bad weights", (-0.5, 0.5), (1.0, 0.9), 1)
+    with pytest.raises(ValueError, match="not exact"):
+        Rule("claims too much", GAUSS3.nodes, GAUSS3.weights, 6)
+    with pytest.raises(ValueError, match="more than"):
+        Rule("claims too little", GAUSS3.nodes, GAUSS3.weights, 4)
+
+
+def test_degree_five_exact_and_order_six():
+    p = lambda x: 3 * x**5 - x**4 + 2 * x**2 - 7  # noqa: E731
+    exact = 3 * 2**6 / 6 - 2**5 / 5 + 2 * 2**3 / 3 - 14  # int_0^2
+    assert GAUSS3.apply(p, 0.0, 2.0) == pytest.approx(exact, rel=1e-15)
+    errs = [abs(composite(GAUSS3, np.exp, 0.0, 1.0, n) - math.expm1(1.0)) for n in (2, 4, 8)]
+    slopes = [math.log2(e0 / e1) for e0, e1 in zip(errs, errs[1:])]
+    assert all(5.8 < s < 6.2 for s in slopes), slopes  # smooth integrand: O(h^6)
+
+
+def test_s1_and_s10_against_mpmath():
+    # 5(b) and 5(c): the double-precision sums agree with (11) evaluated at 40 digits.
+    for n in (1, 10):
+        assert quadrature_period(L, ALPHA, n) == pytest.approx(float(s_n_mp(n)), rel=2e-15)
+
+
+def test_singular_rate_is_one_half():
+    exact = agm_period(L, ALPHA, iterations=7)
+    ns = [10**3, 10**4, 10**5]
+    errs = [abs(quadrature_period(L, ALPHA, n) - exact) for n in ns]
+    slope = np.polyfit(np.log(ns), np.log(errs), 1)[0]
+    assert slope == pytest.approx(-0.5, abs=0.01)
+
+
+def test_integral_against_scipy_quad_alg_weight():
+    # (alpha - theta)^(-1/2) is taken by QUADPACK's algebraic weight; the rest is smooth.
+    smooth = lambda th: math.sqrt((ALPHA - th) / (math.cos(th) - math.cos(ALPHA))) if th < ALPHA else 1 / math.sqrt(math.sin(ALPHA))  # noqa: E731
+    val, err = quad(smooth, 0.0, ALPHA, weight="alg", wvar=(0.0, -0.5))
+    t_quad = period_prefactor(L, 9.80665) * val
+    assert t_quad == pytest.approx(float(period_mp(L, ALPHA)), rel=1e-12)
+    assert t_quad == pytest.approx(agm_period(L, ALPHA, iterations=7), rel=1e-12)
+    s = [quadrature_period(L, ALPHA, n) for n in (10, 100, 1000)]
+    assert all(x < t_quad for x in s) and s[0] < s[1] < s[2]  # S_n increases towards the integral
+
+
+def test_substitution_converges_to_rounding_level():
+    ref = float(period_mp(L, ALPHA))
+    assert quadrature_period(L, ALPHA, 100, substitution=True) == pytest.approx(ref, rel=4e-15)
+    with mpmath.workdps(30):  # the substituted integrand at phi = 1: sqrt2 / sqrt(1 - k^2 sin^2 1)
+        k = mpmath.sin(mpmath.mpf(ALPHA) / 2)
+        v = mpmath.sqrt(2) / mpmath.sqrt(1 - k**2 * mpmath.sin(1) ** 2)
+    assert substituted_integrand(ALPHA)(np.array(1.0)) == pytest.approx(float(v), rel=1e-15)
+
+
+def test_integrand_is_infinite_at_alpha():
+    # The reason for 5(a): a closed rule would evaluate this.
+    with np.errstate(divide="ignore"):
+        assert period_integrand(ALPHA)(np.array(ALPHA)) == np.inf
+    th = 0.3
+    assert period_integrand(ALPHA)(np.array(th)) == pytest.approx(1 / math.sqrt(math.cos(th) - math.cos(ALPHA)), rel=1e-15)
+
+
+def test_chunking_does_not_change_the_sum():
+    f = period_integrand(ALPHA)
+    a = composite(GAUSS3, f, 0.0, ALPHA, 1000)
+    b = composite(GAUSS3, f, 0.0, ALPHA, 1000, chunk=7)
+    assert a == pytest.approx(b, rel=1e-15)
+
+
+def test_ten_million_subintervals_in_bounded_memory():
+    tracemalloc.start()
+    try:
+        t = quadrature_period(L, ALPHA, 10**7)
+        peak = tracemalloc.get_traced_memory()[1]
+    finally:
+        tracemalloc.stop()
+    assert peak < 50 * 2**20  # measured: about 9 MB
+    exact = agm_period(L, ALPHA, iterations=7)
+    assert abs(t - exact) == pytest.approx(abs(quadrature_period(L, ALPHA, 10**5) - exact) / 10, rel=1e-3)
+
+
+def test_problem5_table():
+    r = problem5()
+    exact = agm_period(L, ALPHA, iterations=7)
+    assert r.exact == exact
+    assert [row.n for row in r.rows] == [1, 10, 100, 1000, 10000, 100000]
+    for row in r.rows:
+        assert row.error == abs(row.period - exact)
+        assert row.substitution_error < 1e-6 or row.n == 1
+    assert [round(row.rate, 2) for row in r.rows[1:]] == [0.5] * 5
+    assert r.single == r.rows[0].period and r.composite10 == r.rows[1].period
+    assert "infinite" in r.answer_5a
+
+
+@pytest.mark.parametrize("n", [0, -1, 1.5, "10"])
+def test_bad_n(n):
+    with pytest.raises(InputError) as exc:
+        quadrature_period(L, ALPHA, n)
+    assert exc.value.name == "n"
+
+
+def test_bad_amplitude_and_interval():
+    with pytest.raises(InputError):
+        quadrature_period(L, math.pi, 10)
+    with pytest.raises(InputError):
+        composite(GAUSS3, np.exp, 1.0, 0.0, 10)
