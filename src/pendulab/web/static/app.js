@@ -198,6 +198,7 @@ function renderEstimates(p) {
   if (!e) {
     Plotly.react("plot-estimates", [], layout("Period estimates − exact T", "", "estimate − T (s)", {
       annotations: [{ text: "no period from this simulation", showarrow: false, xref: "paper", yref: "paper", x: 0.5, y: 0.5 }],
+      xaxis: { visible: false }, yaxis: { visible: false },
     }), PLOT_CONFIG);
     return;
   }
@@ -220,10 +221,12 @@ function renderConvergence(body, err) {
   if (!body) {
     Plotly.react("plot-convergence", [], layout("Period error vs step h", "h (s)", "|error| (s)", {
       annotations: [{ text: err ? err.message : "no data", showarrow: false, xref: "paper", yref: "paper", x: 0.5, y: 0.5 }],
+      xaxis: { visible: false }, yaxis: { visible: false },
     }), PLOT_CONFIG);
     return;
   }
   const rows = body.rows.filter((r) => r.estimate);
+  if (!rows.length) { renderConvergence(null, { message: "no period from any of these steps" }); return; }
   const series = (key, name, color, symbol) => {
     const pts = rows.filter((r) => r.estimate.errors[key] > 0);
     return { x: pts.map((r) => r.step), y: pts.map((r) => r.estimate.errors[key]), mode: "lines+markers", name,
