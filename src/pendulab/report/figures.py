@@ -32,6 +32,10 @@ def new_figure(width: float = WIDTH, height: float = HEIGHT):
             "svg.hashsalt": "pendulab",  # reproducible ids in the SVG
             "svg.fonttype": "path",
             "lines.linewidth": 1.0,
+            "font.family": "serif",
+            "font.serif": ["DejaVu Serif"],
+            "mathtext.fontset": "cm",
+            "axes.formatter.use_mathtext": True,
         }
     )
     fig, ax = plt.subplots(figsize=(width, height), layout="constrained")

@@ -33,6 +33,11 @@ def problem1(doc: Doc, students: Sequence[int]) -> None:
         "p1.gtext": r.g_text, "p1.rell": sci(rel_l, 2), "p1.relT": sci(rel_t, 2),
         "p1.ratio": num(rel_l / rel_t, 2),
     })
+    # The digit rule's threshold 0.5 * 10^(k - n + 1) for n and n + 1 digits.
+    k = math.floor(math.log10(abs(r.g)))
+    n = r.significant_digits
+    doc.set(**{"p1.k": integer(k), "p1.half": num(0.5 * 10.0 ** (k - n + 1), 3),
+               "p1.halfnext": num(0.5 * 10.0 ** (k - n), 3)})
 
 
 # ----------------------------------------------------------------------------- problem 2
@@ -69,6 +74,7 @@ def problem2(doc: Doc, students: Sequence[int]) -> None:
         "p2.dfz": num(run.derivatives[-1], 6), "p2.last": sci(abs(xs[-1] - xs[-2]), 3),
         "p2.errest": sci(run.error_estimate, 2), "p2.delta": sci(run.rounding_level, 2),
         "p2.closed": sci(abs(r.closed_form - r.alpha), 2) if r.closed_form != r.alpha else "0",
+        "p2.qtol": f"{newton.Q_RTOL:.0%}",
         "p2.kmax": "—" if run.k_max is None else integer(run.k_max),
         "p2.C": num(const, 10), "p2.qkmax": "—" if qk is None else num(qk, 10),
         "p2.qrel": "—" if qk is None else sci(abs(qk - const) / const, 2),
@@ -82,7 +88,8 @@ def problem3(doc: Doc, students: Sequence[int]) -> None:
     from ..plots.simulation import phase_portrait, time_series
 
     r = problems.problem3(students)
-    doc.listing(_kernels.taylor2_step, _kernels.trajectory, taylor.step_count, _kernels.first_return,
+    doc.listing(_kernels.taylor2_step, _kernels.step, _kernels.fill_trajectory, _kernels.trajectory,
+                taylor.step_count, _kernels.push, _kernels.first_return,
                 crossing.estimate_period, interpolation.divided_differences, interpolation.newton_eval,
                 interpolation.inverse_cubic, group.group_length)
 
@@ -242,7 +249,7 @@ def problem5(doc: Doc, students: Sequence[int]) -> None:
         "p5.q1": num(r.single, 12), "p5.e1": sci(abs(r.single - r.exact), 3),
         "p5.s10": num(r.composite10, 12), "p5.e10": sci(abs(r.composite10 - r.exact), 3),
         "p5.rate": fixed(last.rate, 4) if last.rate is not None else "—",
-        "p5.elast": sci(last.error, 3),
+        "p5.elast": sci(last.error, 3), "p5.nlast": integer(last.n),
         "p5.subbest": sci(sub_ok.substitution_error, 1) if sub_ok else "—",
         "p5.subn": integer(sub_ok.n) if sub_ok else "—",
         "p5.sub10": sci(next(row.substitution_error for row in r.rows if row.n == 10), 2),
@@ -282,10 +289,10 @@ def agm(doc: Doc, students: Sequence[int]) -> None:
 
 
 SECTIONS = [
+    ("exact period", agm),
     ("problem 1", problem1),
     ("problem 2", problem2),
     ("problem 3", problem3),
     ("problem 4", problem4),
     ("problem 5", problem5),
-    ("exact period", agm),
 ]
