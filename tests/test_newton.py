@@ -132,3 +132,20 @@ def test_other_targets_and_lengths_match_brentq():
         assert r.interval.holds
         z = brentq(lambda a: f_ref(a, length, target), 1e-9, math.pi - 1e-9, xtol=1e-16)
         assert r.alpha == pytest.approx(z, abs=1e-13)
+
+
+def test_newton_plot_draws_the_corrections():
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    from pendulab.plots.problems import newton_corrections
+
+    r = problem2()
+    fig, ax = plt.subplots()
+    try:
+        line = newton_corrections(ax, r)
+        assert list(line.get_ydata()) == [abs(d) for d in r.run.corrections if d != 0]
+    finally:
+        plt.close(fig)

@@ -143,3 +143,21 @@ def test_bad_amplitude_and_interval():
         quadrature_period(L, math.pi, 10)
     with pytest.raises(InputError):
         composite(GAUSS3, np.exp, 1.0, 0.0, 10)
+
+
+def test_convergence_plot_draws_the_table():
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    from pendulab.plots.problems import quadrature_convergence
+
+    r = problem5(ns=(10, 100, 1000))
+    fig, ax = plt.subplots()
+    try:
+        lines = quadrature_convergence(ax, r)
+        assert len(lines) == 3  # S_n, the slope guide, the substitution
+        assert list(lines[0].get_ydata()) == [row.error for row in r.rows]
+    finally:
+        plt.close(fig)
