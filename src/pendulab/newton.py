@@ -387,9 +387,9 @@ class PeriodEquation:
         Tries ends at multiples of 5 degrees first (then 1, 0.1, 0.01), narrowest first,
         inside ``(0, 90]`` or ``[90, 180)`` where ``f''`` keeps its sign.
         """
-        for g in grid_degrees:
-            n = round(180 / g)
-            ends = [i * g for i in range(1, n)]  # (0, 180) exclusive
+        for spacing in grid_degrees:
+            n = round(180 / spacing)
+            ends = [i * spacing for i in range(1, n)]  # (0, 180) exclusive
             fs = [self.f(math.radians(d)) for d in ends]
             cell = next((i for i in range(len(ends) - 1) if fs[i] * fs[i + 1] <= 0), None)
             if cell is None:
