@@ -44,3 +44,12 @@ def test_numbers_are_exact():
 def test_malformed(text):
     with pytest.raises(InputError):
         parse_angle("amplitude", text)
+
+
+@pytest.mark.parametrize("text", ["1e99999999", "1e-99999999", "1" * 500])
+def test_huge_literals_are_refused_quickly(text):
+    # Fraction("1e99999999") would build a 10^8-digit integer and never return.
+    with pytest.raises(InputError):
+        parse_number("length", text)
+    with pytest.raises(InputError):
+        parse_angle("amplitude", text + "deg")

@@ -71,8 +71,19 @@ class Exact:
         return cls(Fraction(value), 0, repr(value))
 
 
+_EXPONENT = re.compile(r"[eE]([+-]?\d+)$")
+#: Exponents beyond this are far outside the doubles; refusing them keeps ``Fraction``
+#: from building a gigantic integer (``1e99999999`` would never finish).
+_MAX_EXPONENT = 400
+_MAX_DIGITS = 200
+
+
 def _fraction(text: str) -> Fraction:
-    return Fraction(text)  # exact for decimal literals such as "9.80665" or "1e-3"
+    """The exact value of a decimal literal such as ``9.80665`` or ``1e-3``."""
+    m = _EXPONENT.search(text)
+    if len(text) > _MAX_DIGITS or (m and abs(int(m.group(1))) > _MAX_EXPONENT):
+        raise ValueError(text)
+    return Fraction(text)
 
 
 def parse_number(name: str, text: str) -> Exact:
