@@ -36,6 +36,8 @@ STATUS = ("found", "no_return", "left_oscillation", "too_early")
 #: Pendulums per chunk (one progress tick, one Dask task): large enough to keep
 #: both cores busy, small enough for a smooth progress bar.
 CHUNK = 2048
+#: Seconds to wait for a Dask scheduler before giving up with one clear error.
+CONNECT_TIMEOUT = 10
 
 
 
@@ -290,7 +292,7 @@ def _run_dask(scheduler: Any, jobs: Sequence, alpha: np.ndarray, length: np.ndar
                          "(pip install 'pendulab[dask]')") from None
     own = not hasattr(scheduler, "submit")
     try:
-        client = Client(scheduler, timeout=10) if own else scheduler
+        client = Client(scheduler, timeout=CONNECT_TIMEOUT) if own else scheduler
     except (OSError, TimeoutError, ValueError) as exc:
         raise InputError("scheduler", scheduler, f"the address of a reachable Dask scheduler ({exc})") from None
     try:
