@@ -125,3 +125,20 @@ def emit_json(data: dict) -> None:
 def fmt(x: float, digits: int = 15) -> str:
     """A float with ``digits`` significant digits, the way tables print it."""
     return f"{x:.{digits}g}"
+
+
+def save_plot(draw: Callable, path, size: tuple[float, float] = (6.4, 4.2)) -> None:
+    """Call ``draw(ax)`` on a fresh figure and save it atomically (format from the extension)."""
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    from .._atomic import save_figure
+
+    fig, ax = plt.subplots(figsize=size, layout="constrained")
+    try:
+        draw(ax)
+        save_figure(fig, path, dpi=150)
+    finally:
+        plt.close(fig)

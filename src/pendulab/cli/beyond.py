@@ -8,7 +8,7 @@ import click
 
 from ..errors import InputError
 from ..exact import parse_angle
-from ._common import POSITIVE, POSITIVE_LIST, _Type, emit_json, g_option, json_option
+from ._common import POSITIVE, POSITIVE_LIST, _Type, emit_json, g_option, json_option, save_plot
 
 #: The amplitudes (degrees) of the approximations table.
 TABLE_DEGREES = (1, 10, 30, 60, 90, 120, 150, 170, 179, 179.9)
@@ -69,23 +69,6 @@ ANGLE_RANGE = AngleRangeType()
 METHOD_LIST = MethodListType()
 
 
-def _save(draw, path, size=(7.0, 4.6)) -> None:
-    """Draw on a fresh figure and save it atomically (format from the extension)."""
-    import matplotlib
-
-    matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
-
-    from .._atomic import save_figure
-
-    fig, ax = plt.subplots(figsize=size, layout="constrained")
-    try:
-        draw(ax)
-        save_figure(fig, path, dpi=150)
-    finally:
-        plt.close(fig)
-
-
 @click.command()
 @click.option("--plot", type=click.Path(dir_okay=False),
               help="Write the relative error of every formula over [0, 180) degrees to this PNG/SVG/PDF.")
@@ -111,7 +94,7 @@ def approximations(plot, as_json):
     if plot:
         from ..plots.beyond import approximation_errors as draw
 
-        _save(lambda ax: draw(ax, fine), plot)
+        save_plot(lambda ax: draw(ax, fine), plot, (7.0, 4.6))
     if as_json:
         emit_json({
             "amplitudes_deg": list(TABLE_DEGREES),
@@ -169,7 +152,7 @@ def sweep(amplitudes, steps, methods, length, output, plot, scheduler, g, as_jso
     if plot:
         from ..plots.beyond import sweep_errors
 
-        _save(lambda ax: sweep_errors(ax, result), plot)
+        save_plot(lambda ax: sweep_errors(ax, result), plot, (7.0, 4.6))
     summary = result.summary()
     if as_json:
         emit_json({"length": float(length), "g": float(g), "amplitudes": len(amplitudes),

@@ -4,7 +4,7 @@ from __future__ import annotations
 import click
 
 from ..cases import EXAMPLE_GROUP, FIGURE3_STEP, FIGURE3_T_MAX, PROBLEM3_AMPLITUDE, PROBLEM3_STEPS
-from ._common import ANGLE, FLOAT, POSITIVE, POSITIVE_LIST, emit_json, fmt, g_option, json_option
+from ._common import ANGLE, FLOAT, POSITIVE, POSITIVE_LIST, emit_json, fmt, g_option, json_option, save_plot
 
 _LENGTH_HELP = "Pendulum length l, m (> 0)."
 _ANGLE_HELP = "Amplitude alpha in [0, pi): 0.785, pi/4, 4pi/5, 45deg, 45°."
@@ -76,9 +76,9 @@ def simulate(length, amplitude, step, t_max, t0, digits, as_csv, plot, phase, me
             check_writable(name, path)
     tr = run(float(length), float(amplitude), float(step), t_max, t0, float(g), method)
     if plot:
-        _save(lambda ax: _plots().time_series(ax, tr), plot)
+        save_plot(lambda ax: _plots().time_series(ax, tr), plot)
     if phase:
-        _save(lambda ax: _plots().phase_portrait(ax, tr), phase)
+        save_plot(lambda ax: _plots().phase_portrait(ax, tr), phase)
     if as_json:
         emit_json({"length": tr.length, "amplitude": tr.amplitude, "g": tr.g, "step": tr.step,
                    "method": method, "n_steps": tr.n_steps, "t": tr.t, "theta": tr.theta, "omega": tr.omega})
@@ -97,23 +97,6 @@ def _plots():
     from ..plots import simulation
 
     return simulation
-
-
-def _save(draw, path) -> None:
-    """Draw on a fresh figure and save it atomically (format from the extension)."""
-    import matplotlib
-
-    matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
-
-    from .._atomic import save_figure
-
-    fig, ax = plt.subplots(figsize=(6.4, 4.2), layout="constrained")
-    try:
-        draw(ax)
-        save_figure(fig, path, dpi=150)
-    finally:
-        plt.close(fig)
 
 
 @click.command()

@@ -209,9 +209,9 @@ def fit(length, amplitude, step, t_max, decimals, plot, g, as_json):
     f, d = r.fit, r.fit.definiteness
     if plot:
         from ..plots import problems as plots
-        from .core import _save
+        from ._common import save_plot
 
-        _save(lambda ax: plots.fit(ax, r), plot)
+        save_plot(lambda ax: plots.fit(ax, r), plot)
     if as_json:
         emit_json({
             "length": r.length, "amplitude": r.amplitude, "step": r.step, "period": r.period,
