@@ -57,5 +57,5 @@ def report(students: tuple[int, ...], lang: str, output: str) -> None:
     if not students:
         raise InputError("students", "", "comma-separated positive integers")
     group_length(students)  # a sum with no non-zero digit fails here, before the work
-    pages = build_report(students, lang=lang, output=output, progress=True)
-    click.echo(f"wrote {output} ({pages} pages)", err=True)
+    build_report(students, lang=lang, output=output, progress=True)
+    click.echo(f"pendulab: wrote {output}", err=True)

@@ -27,7 +27,7 @@ from ..errors import InputError
 
 LANGUAGES = ("en", "pt")
 #: A placeholder no section filled is an error (False only while drafting the catalogue).
-STRICT = False
+STRICT = True
 #: The document date (PDF metadata): fixed so that the same inputs give the same bytes;
 #: ``SOURCE_DATE_EPOCH`` (the reproducible-builds convention) overrides it.
 DEFAULT_DATE = (2020, 1, 6)  # the coursework's deadline

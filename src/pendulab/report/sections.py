@@ -101,7 +101,7 @@ def problem3(doc: Doc, students: Sequence[int]) -> None:
         if i is None:
             rows.append(["⋮", "⋮", "⋮"])
         else:
-            rows.append([num(f3.t[i], 12), num(f3.theta[i], 12), num(f3.omega[i], 12)])
+            rows.append([fixed(f3.t[i], 1), num(f3.theta[i], 12), num(f3.omega[i], 12)])
     doc.tables["p3a"] = rows
     doc.set(**{"p3a.n": integer(n)})
 
