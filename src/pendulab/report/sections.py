@@ -149,7 +149,8 @@ def problem3(doc: Doc, students: Sequence[int]) -> None:
     # 3(d): the inverse cubic interpolation with h = 1e-3.
     c = r.cubic
     ip = c.interpolation
-    doc.tables["p3d"] = [[integer(k), num(ip.z2[k], 12), num(ip.t[k], 10), num(ip.coefficients[k], 10)]
+    places = max(0, round(-math.log10(c.step)))  # t_j = j h shown with the step's decimals
+    doc.tables["p3d"] = [[integer(k), num(ip.z2[k], 12), fixed(ip.t[k], places), num(ip.coefficients[k], 10)]
                          for k in range(4)]
     first = c.j - 1  # the table's nodes are j-1 .. j+2
     taylor_err = r.taylor_error
