@@ -100,3 +100,22 @@ def test_canonical_cases_are_the_spec_values():
     assert cases.FIGURE3.l == 1.0 and cases.FIGURE3.alpha == math.pi / 4
     assert cases.PROBLEM4.l == 3.5 and cases.PROBLEM5.alpha == 4 * math.pi / 5
     assert cases.G == 9.80665
+
+
+@pytest.mark.parametrize("stride", [1, 3, 7, 100])
+def test_thinned_storage_keeps_the_same_points(stride):
+    full = simulate(2.08, 2.5, 1e-3, 5.0)
+    thin = simulate(2.08, 2.5, 1e-3, 5.0, stride=stride)
+    idx = list(range(0, 5001, stride))
+    if idx[-1] != 5000:
+        idx.append(5000)
+    assert np.array_equal(thin.theta, full.theta[idx])
+    assert np.array_equal(thin.omega, full.omega[idx])
+    assert np.array_equal(thin.t, full.t[idx])
+    assert thin.n_steps == full.n_steps == 5000
+
+
+def test_bad_stride():
+    with pytest.raises(InputError) as err:
+        simulate(1.0, 0.5, 0.1, 2.0, stride=0)
+    assert err.value.name == "stride"

@@ -120,6 +120,21 @@ def fill_trajectory(method, order, alpha, c, h, z1, z2):
         z2[i] = b
 
 
+@njit(cache=True)
+def fill_thinned(method, order, alpha, c, h, n, stride, z1, z2):
+    """Run ``n`` steps from ``Z_0 = (alpha, 0)``; keep ``Z_j`` for ``j = 0, stride, 2 stride, ...`` and ``j = n``."""
+    a, b = alpha, 0.0
+    z1[0] = a
+    z2[0] = b
+    k = 1
+    for i in range(1, n + 1):
+        a, b = step(method, order, a, b, h, c)
+        if i % stride == 0 or i == n:
+            z1[k] = a
+            z2[k] = b
+            k += 1
+
+
 def trajectory(method, order, alpha, c, h, n):
     """The points ``Z_j``, ``j = 0..n``, as two new arrays."""
     z1 = np.empty(n + 1)

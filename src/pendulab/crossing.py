@@ -19,10 +19,8 @@ from .cases import G
 from .errors import InputError, LeftOscillationError, NoReturnError, NumericalError
 from .interpolation import InverseInterpolation, inverse_cubic
 from .period import agm_period
-from .taylor import method_code, step_count
+from .taylor import MAX_STEPS, method_code, step_count
 
-#: The longest streamed search (steps); about a minute on one core.
-MAX_STEPS = 2_000_000_000
 
 
 @dataclass(frozen=True)

@@ -20,6 +20,8 @@ METHODS: dict[str, tuple[int, int]] = {"taylor2": (0, 2), "rk4": (1, 4), "verlet
 TAYLOR_CODE, MAX_TAYLOR_ORDER = 3, 30  # as in _kernels (not imported: it loads numba)
 #: The largest trajectory kept in memory (points); longer runs stream (crossing.py).
 MAX_POINTS = 10_000_001
+#: The most steps one simulation may take (about a minute on one core).
+MAX_STEPS = 2_000_000_000
 
 
 def method_code(method: str) -> tuple[int, int]:
@@ -69,7 +71,8 @@ class Trajectory:
 
     @property
     def n_steps(self) -> int:
-        return len(self.t) - 1
+        """``N`` of (6): the steps simulated (more than ``len(t) - 1`` when thinned)."""
+        return int(round((self.t[-1] - self.t0) / self.step))
 
     def time_series(self) -> np.ndarray:
         """List (i) of problem 3: the points ``(t_i, z1_i)``, shape (N+1, 2)."""
@@ -88,6 +91,7 @@ def simulate(
     t0: Any = 0.0,
     g: Any = G,
     method: str = "taylor2",
+    stride: int = 1,
 ) -> Trajectory:
     """Simulate ``theta'' = c sin(theta)``, ``c = -g/l`` (2), from rest at ``alpha``.
 
@@ -107,6 +111,10 @@ def simulate(
         ``"taylor2"``: the coursework's algorithm (3) (default); ``"rk4"``, ``"verlet"``,
         ``"taylor:P"``: see :func:`method_code`.
 
+    stride : int
+        Keep every ``stride``-th point (and the last): the steps are all taken, only
+        the storage is thinned, e.g. for plotting a run with a small step.
+
     Returns
     -------
     Trajectory
@@ -117,10 +125,20 @@ def simulate(
     t0, t_max, step = v.time_span(t0, t_max, step)
     code, order = method_code(method)
     n = step_count(t0, t_max, step)
-    if n + 1 > MAX_POINTS:
+    stride = v.integer("stride", stride, 1)
+    index = np.arange(0, n + 1, stride)
+    if index[-1] != n:
+        index = np.append(index, n)
+    if len(index) > MAX_POINTS:
         raise InputError("step", step, f">= (t_max - t0)/{MAX_POINTS - 1:.0e} to keep at most {MAX_POINTS:.0e} points")
-    from ._kernels import trajectory
+    if n > MAX_STEPS:
+        raise InputError("step", step, f">= (t_max - t0)/{MAX_STEPS:.0e} (at most {MAX_STEPS:.0e} steps)")
+    from ._kernels import fill_thinned, trajectory
 
-    z1, z2 = trajectory(code, order, alpha, -g / length, step, n)
-    t = t0 + step * np.arange(n + 1)
+    if stride == 1:
+        z1, z2 = trajectory(code, order, alpha, -g / length, step, n)
+    else:
+        z1, z2 = np.empty(len(index)), np.empty(len(index))
+        fill_thinned(code, order, alpha, -g / length, step, n, stride, z1, z2)
+    t = t0 + step * index
     return Trajectory(t, z1, z2, length, alpha, g, step, t0, method)

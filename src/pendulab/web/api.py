@@ -233,14 +233,13 @@ def thin(n_points: int, points: int) -> np.ndarray:
 
 def simulate_arrays(p: Mapping[str, Any], points: int) -> dict[str, Any]:
     """Run :func:`pendulab.taylor.simulate` and keep at most ``points`` evenly spaced points."""
-    from ..taylor import simulate
+    from ..taylor import simulate, step_count
 
-    with _SIMULATIONS:
-        tr = simulate(p["length"], p["amplitude"], p["step"], p["t_max"], g=p["g"], method=p["method"])
-        idx = thin(len(tr.t), points)
-        t, theta, omega = tr.t[idx], tr.theta[idx], tr.omega[idx]
+    idx = thin(step_count(0.0, p["t_max"], p["step"]) + 1, points)
     stride = int(idx[1] - idx[0]) if len(idx) > 1 else 1
-    return {"n_steps": tr.n_steps, "stride": stride, "t": t, "theta": theta, "omega": omega}
+    with _SIMULATIONS:  # the kernel stores only the kept points
+        tr = simulate(p["length"], p["amplitude"], p["step"], p["t_max"], g=p["g"], method=p["method"], stride=stride)
+    return {"n_steps": tr.n_steps, "stride": stride, "t": tr.t, "theta": tr.theta, "omega": tr.omega}
 
 
 def simulate_view(params: Mapping[str, str]) -> dict[str, Any]:
