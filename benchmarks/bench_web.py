@@ -16,10 +16,7 @@ from __future__ import annotations
 
 import json
 import math
-import socket
 import statistics
-import subprocess
-import sys
 import time
 
 import httpx
@@ -27,6 +24,7 @@ import httpx
 from pendulab.crossing import estimate_period
 from pendulab.period import agm_period
 from pendulab.taylor import simulate
+from pendulab.web.child import serve_in_child
 from pendulab.web import api
 
 LENGTH, ALPHA, STEP, T_MAX = 3.5, 4 * math.pi / 5, 1e-4, 20.0
@@ -55,41 +53,16 @@ def presenter() -> None:
     json.dumps(api.simulate_view(QUERY), separators=(",", ":")).encode()
 
 
-def start_server() -> tuple[subprocess.Popen, str]:
-    with socket.socket() as s:
-        s.bind(("127.0.0.1", 0))
-        port = s.getsockname()[1]
-    cmd = [sys.executable, "-c", "import sys; from pendulab.cli import main; sys.exit(main())", "serve", "--port", str(port)]
-    proc = subprocess.Popen(cmd, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
-    base = f"http://127.0.0.1:{port}"
-    deadline = time.monotonic() + 60
-    while True:
-        try:
-            if httpx.get(base + "/api/config", timeout=2).status_code == 200:
-                return proc, base
-        except httpx.TransportError:
-            pass
-        if proc.poll() is not None or time.monotonic() > deadline:
-            proc.kill()
-            raise SystemExit("pendulab serve did not start")
-        time.sleep(0.2)
-
-
 def main() -> None:
     rows = [("library (simulate + estimate + AGM)", timed(library)), ("presenter in process (+ JSON)", timed(presenter))]
-    proc, base = start_server()
-    try:
-        with httpx.Client(base_url=base, timeout=30) as client:
-            def http() -> None:
-                r = client.get("/api/simulate", params=QUERY)
-                assert r.status_code == 200
-                r.json()
+    with serve_in_child() as base, httpx.Client(base_url=base, timeout=30) as client:
+        def http() -> None:
+            r = client.get("/api/simulate", params=QUERY)
+            assert r.status_code == 200
+            r.json()
 
-            rows.append(("HTTP GET /api/simulate on loopback", timed(http)))
-            size = len(client.get("/api/simulate", params=QUERY).content)
-    finally:
-        proc.terminate()
-        proc.wait(10)
+        rows.append(("HTTP GET /api/simulate on loopback", timed(http)))
+        size = len(client.get("/api/simulate", params=QUERY).content)
     floor = statistics.median(rows[0][1])
     print(f"problem 5's pendulum, h = {STEP:g} s, t_max = {T_MAX:g} s; median and 90th percentile of {REPEATS} runs; response {size / 1e3:.0f} kB")
     print(f"{'stage':40} {'median ms':>10} {'p90 ms':>8} {'ratio':>6}")

@@ -9,19 +9,16 @@ from __future__ import annotations
 
 import math
 import os
-import socket
-import subprocess
-import sys
 import time
 from pathlib import Path
 from urllib.parse import parse_qs, urlparse
 
-import httpx
 import mpmath
 import pytest
 from playwright.sync_api import sync_playwright
 
 from pendulab import taylor
+from pendulab.web.child import serve_in_child
 
 CHROMIUM = "/usr/bin/chromium"
 CHROMIUM_ARGS = [
@@ -36,38 +33,11 @@ def ellipk_period(length: float, alpha: float, g: float = 9.80665) -> float:
         return float(4 * mpmath.sqrt(mpmath.mpf(length) / mpmath.mpf(g)) * mpmath.ellipk(m))
 
 
-def free_port() -> int:
-    with socket.socket() as s:
-        s.bind(("127.0.0.1", 0))
-        return s.getsockname()[1]
-
-
 @pytest.fixture(scope="module")
 def server():
     """The real command, ``pendulab serve --port N``, until the module's tests are done."""
-    port = free_port()
-    cmd = [sys.executable, "-c", "import sys; from pendulab.cli import main; sys.exit(main())", "serve", "--port", str(port)]
-    proc = subprocess.Popen(cmd, stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True)
-    base = f"http://127.0.0.1:{port}"
-    try:
-        deadline = time.monotonic() + 60
-        while True:
-            try:
-                if httpx.get(base + "/api/config", timeout=2).status_code == 200:
-                    break
-            except httpx.TransportError:
-                pass
-            if proc.poll() is not None or time.monotonic() > deadline:
-                raise RuntimeError(f"pendulab serve did not start: {proc.stdout.read() if proc.poll() is not None else 'timeout'}")
-            time.sleep(0.2)
+    with serve_in_child() as base:
         yield base
-    finally:
-        proc.terminate()
-        try:
-            proc.wait(10)
-        except subprocess.TimeoutExpired:
-            proc.kill()
-            proc.wait(10)
 
 
 @pytest.fixture(scope="module")

@@ -8,14 +8,12 @@ from __future__ import annotations
 
 import asyncio
 import math
-import socket
-import subprocess
-import sys
-import time
 
 import httpx
 import mpmath
 import pytest
+
+from pendulab.web.child import serve_in_child
 
 N_REQUESTS = 200
 
@@ -28,30 +26,8 @@ def ellipk_period(length: float, alpha: float, g: float = 9.80665) -> float:
 
 @pytest.fixture(scope="module")
 def server():
-    with socket.socket() as s:
-        s.bind(("127.0.0.1", 0))
-        port = s.getsockname()[1]
-    cmd = [sys.executable, "-c", "import sys; from pendulab.cli import main; sys.exit(main())", "serve", "--port", str(port)]
-    proc = subprocess.Popen(cmd, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
-    base = f"http://127.0.0.1:{port}"
-    try:
-        deadline = time.monotonic() + 60
-        while True:
-            try:
-                if httpx.get(base + "/api/config", timeout=2).status_code == 200:
-                    break
-            except httpx.TransportError:
-                pass
-            assert proc.poll() is None and time.monotonic() < deadline, "pendulab serve did not start"
-            time.sleep(0.2)
+    with serve_in_child() as base:
         yield base
-    finally:
-        proc.terminate()
-        try:
-            proc.wait(10)
-        except subprocess.TimeoutExpired:
-            proc.kill()
-            proc.wait(10)
 
 
 def requests() -> list[tuple[dict, float | None]]:
