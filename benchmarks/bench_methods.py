@@ -14,7 +14,6 @@ from __future__ import annotations
 import math
 import time
 
-import numpy as np
 
 from pendulab.crossing import estimate_period
 from pendulab.period import agm_period

@@ -7,8 +7,6 @@ g = 4 pi^2 l / T^2); the rest are the library's own results, which the report mu
 from __future__ import annotations
 
 import math
-import os
-import re
 
 import mpmath
 import pypdf

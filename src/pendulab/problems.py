@@ -7,13 +7,20 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
-from typing import Sequence
+from typing import TYPE_CHECKING, Sequence
 
 from . import cases
 from .crossing import PeriodEstimate, estimate_period, observed_orders
 from .group import GroupLength, group_length
 from .period import agm_period
 from .taylor import Trajectory, simulate
+
+if TYPE_CHECKING:  # names for annotations; the modules load when a problem runs
+    import numpy as np
+
+    from .lsq import LeastSquaresFit
+    from .newton import IntervalCheck, NewtonResult, PeriodEquation
+    from .quadrature import Rule
 
 
 # --------------------------------------------------------------------------- problem 3

@@ -84,7 +84,7 @@ def problem2(doc: Doc, students: Sequence[int]) -> None:
 
 # ----------------------------------------------------------------------------- problem 3
 def problem3(doc: Doc, students: Sequence[int]) -> None:
-    from .. import _kernels, crossing, group, interpolation, period, problems, taylor
+    from .. import _kernels, crossing, group, interpolation, problems, taylor
     from ..plots.simulation import phase_portrait, time_series
 
     r = problems.problem3(students)
