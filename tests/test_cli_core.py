@@ -153,3 +153,14 @@ def test_console_script_bad_input_has_no_traceback():
                          capture_output=True, text=True, timeout=120)
     assert res.returncode == 2
     assert res.stderr.count("\n") == 1 and "Traceback" not in res.stderr
+
+
+def test_period_text_prints_only_correct_digits(cli):
+    # The double AGM can be a few ulps off; the printed 15 digits are the true period's
+    # (reference: 4 sqrt(l/g) K(sin^2(alpha/2)) and 2 pi sqrt(l/g) in mpmath, 50 digits).
+    out = cli("period", "-l", "1", "-a", "pi/4").out.splitlines()
+    with mpmath.workdps(50):
+        t = 4 * mpmath.sqrt(1 / mpmath.mpf("9.80665")) * mpmath.ellipk(mpmath.sin(mpmath.pi / 8) ** 2)
+        t0 = 2 * mpmath.pi * mpmath.sqrt(1 / mpmath.mpf("9.80665"))
+        assert out[0].split("=")[1].split()[0] == mpmath.nstr(t, 15, strip_zeros=False)
+        assert out[1].split("=")[1].split()[0] == mpmath.nstr(t0, 15, strip_zeros=False)

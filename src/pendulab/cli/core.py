@@ -23,11 +23,16 @@ def _method_option(f):
 @click.option("--iterations", type=click.IntRange(0, 1000), default=None,
               help="Fixed AGM iterations (7: the coursework's T^ of (8)); default: to convergence.")
 @click.option("--digits", type=click.IntRange(1, 10000), default=None,
-              help="Also give the period to this many significant digits (mpmath), all correct.")
+              help="Print the periods to this many significant digits, all correct (mpmath); default 15.")
 @g_option
 @json_option
 def period(length, amplitude, iterations, digits, g, as_json):
-    """The exact period by the arithmetic-geometric mean, equations (7)-(8)."""
+    """The exact period by the arithmetic-geometric mean, equations (7)-(8).
+
+    The digits printed are those of the true period of the inputs as written (mpmath,
+    Ziv's rounding test); --json gives the double-precision AGM of (8) as well.
+    """
+    from ..exact import Exact
     from ..period import agm_period, period_digits, small_angle_period
 
     t = agm_period(float(length), float(amplitude), float(g), iterations=iterations)
@@ -45,11 +50,12 @@ def period(length, amplitude, iterations, digits, g, as_json):
     if as_json:
         emit_json(data)
         return
-    how = "converged" if iterations is None else f"{iterations} iterations"
-    click.echo(f"period (AGM, {how})  T  = {t!r} s")
-    click.echo(f"small-angle period      T0 = {t0!r} s")
-    if digits is not None:
-        click.echo(f"period, {digits} digits  T  = {data['period_digits']} s")
+    d = digits or 15
+    exact = data.get("period_digits") or period_digits(length, amplitude, g, d)
+    click.echo(f"{'period, AGM (7)-(8)':34}T  = {exact} s")
+    click.echo(f"{'small-angle period 2 pi sqrt(l/g)':34}T0 = {period_digits(length, Exact.of(0), g, d)} s")
+    if iterations is not None:
+        click.echo(f"{f'(8) after {iterations} iterations, double':34}T^ = {t!r} s")
 
 
 @click.command()
