@@ -53,7 +53,7 @@ def verlet_step(z1, z2, h, c):
     return z1_next, z2_half + 0.5 * h * c * math.sin(z1_next)
 
 
-@njit(cache=True, inline="always")
+@njit(cache=True)  # not inlined: its scratch arrays stay out of the other methods' loops
 def taylor_step(p, z1, z2, h, c):
     """One step of the Taylor method of order ``p``: the generalisation of (3).
 
@@ -143,16 +143,6 @@ def trajectory(method, order, alpha, c, h, n):
     return z1, z2
 
 
-@njit(cache=True, inline="always")
-def push(z1w, z2w, a, b):
-    """Shift the 5-point window one place and put ``(a, b)`` last."""
-    for k in range(4):
-        z1w[k] = z1w[k + 1]
-        z2w[k] = z2w[k + 1]
-    z1w[4] = a
-    z2w[4] = b
-
-
 #: Status codes of :func:`first_return`.
 FOUND, NO_RETURN, LEFT_OSCILLATION, TOO_EARLY = 0, 1, 2, 3
 
@@ -163,28 +153,26 @@ def first_return(method, order, alpha, c, h, n):
 
     Looks for the first ``j`` with ``z2_j > 0 >= z2_{j+1}`` and ``z1_{j+1} > 0``: the
     sign change of ``theta'`` from + to - at the top of the swing. Returns
-    ``(status, j, z1w, z2w)`` where the window holds ``Z_{j-2} .. Z_{j+2}``.
+    ``(status, j, z1w, z2w)`` where the window holds ``Z_{j-2} .. Z_{j+2}`` when found.
+    The two points before ``Z_i`` are kept in scalars (registers), not in an array.
     """
-    z1w = np.zeros(5)
-    z2w = np.zeros(5)
-    z1w[4] = alpha  # the window's last slot holds the newest point
-    z1, z2 = alpha, 0.0
+    a2 = b2 = a1 = b1 = 0.0  # Z_{i-2}, Z_{i-1}
+    z1, z2 = alpha, 0.0  # Z_i
     for i in range(n):
         z1n, z2n = step(method, order, z1, z2, h, c)
         if not abs(z1n) < math.pi:  # also catches NaN
-            return LEFT_OSCILLATION, i, z1w, z2w
-        push(z1w, z2w, z1n, z2n)
+            return LEFT_OSCILLATION, i, np.zeros(5), np.zeros(5)
         if z2 > 0.0 and z2n <= 0.0 and z1n > 0.0:  # j = i
             if i < 2:
-                return TOO_EARLY, i, z1w, z2w
+                return TOO_EARLY, i, np.zeros(5), np.zeros(5)
             if i + 2 > n:  # Z_{j+2} lies beyond t_max
-                return NO_RETURN, n, z1w, z2w
-            # One more point: the window becomes Z_{j-2} .. Z_{j+2}.
-            z1n, z2n = step(method, order, z1n, z2n, h, c)
-            push(z1w, z2w, z1n, z2n)
-            return FOUND, i, z1w, z2w
+                return NO_RETURN, n, np.zeros(5), np.zeros(5)
+            z1nn, z2nn = step(method, order, z1n, z2n, h, c)  # Z_{j+2}
+            return FOUND, i, np.array([a2, a1, z1, z1n, z1nn]), np.array([b2, b1, z2, z2n, z2nn])
+        a2, b2 = a1, b1
+        a1, b1 = z1, z2
         z1, z2 = z1n, z2n
-    return NO_RETURN, n, z1w, z2w
+    return NO_RETURN, n, np.zeros(5), np.zeros(5)
 
 
 @njit(cache=True, parallel=True)

@@ -89,7 +89,7 @@ def problem3(doc: Doc, students: Sequence[int]) -> None:
 
     r = problems.problem3(students)
     doc.listing(_kernels.taylor2_step, _kernels.step, _kernels.fill_trajectory, _kernels.trajectory,
-                taylor.step_count, _kernels.push, _kernels.first_return,
+                taylor.step_count, _kernels.first_return,
                 crossing.estimate_period, interpolation.divided_differences, interpolation.newton_eval,
                 interpolation.inverse_cubic, group.group_length)
 
