@@ -5,6 +5,7 @@ import mpmath
 import numpy as np
 import pytest
 
+from conftest import reference_period
 from pendulab.errors import InputError
 from pendulab.period import (
     agm_iterations,
@@ -19,13 +20,6 @@ from pendulab.period import (
 G = 9.80665
 # Amplitudes on a uniform grid and ever closer to pi, down to 1e-12 away (issue 2).
 GRID = np.concatenate([np.linspace(0.0, 3.1, 63), math.pi - np.logspace(-1, -12, 23)])
-
-
-def reference_period(length, alpha, dps=50):
-    """T = 4 sqrt(l/g) K(m), m = sin^2(alpha/2) (DLMF 19.2.8), in mpmath from alpha's exact double."""
-    with mpmath.workdps(dps):
-        m = mpmath.sin(mpmath.mpf(alpha) / 2) ** 2
-        return 4 * mpmath.sqrt(mpmath.mpf(length) / mpmath.mpf(G)) * mpmath.ellipk(m)
 
 
 @pytest.mark.parametrize("alpha", GRID)

@@ -9,7 +9,6 @@ from __future__ import annotations
 import math
 from pathlib import Path
 
-import mpmath
 import numpy as np
 import pytest
 from fastapi.testclient import TestClient
@@ -18,18 +17,12 @@ from pendulab import taylor
 from pendulab.cli import main
 from pendulab.crossing import estimate_period
 from pendulab.web import api, create_app
+from conftest import ellipk_period
 
 
 @pytest.fixture(scope="module")
 def client():
     return TestClient(create_app())
-
-
-def ellipk_period(length: float, alpha: float, g: float = 9.80665) -> float:
-    """The period by mpmath's elliptic K (DLMF 19.2.8), at 30 digits."""
-    with mpmath.workdps(30):
-        m = mpmath.sin(mpmath.mpf(alpha) / 2) ** 2
-        return float(4 * mpmath.sqrt(mpmath.mpf(length) / mpmath.mpf(g)) * mpmath.ellipk(m))
 
 
 # Figure 3 of the coursework (l = 1, alpha = pi/4, h = 0.1), 12 significant digits (spec.md).

@@ -13,24 +13,18 @@ import time
 from pathlib import Path
 from urllib.parse import parse_qs, urlparse
 
-import mpmath
 import pytest
 from playwright.sync_api import sync_playwright
 
 from pendulab import taylor
 from pendulab.web.child import serve_in_child
+from conftest import ellipk_period
 
 CHROMIUM = "/usr/bin/chromium"
 CHROMIUM_ARGS = [
     "--headless", "--no-sandbox", "--disable-gpu", "--disable-quic", "--no-first-run",
     "--disable-background-networking", "--disable-component-update", "--disable-sync",
 ]
-
-
-def ellipk_period(length: float, alpha: float, g: float = 9.80665) -> float:
-    with mpmath.workdps(30):
-        m = mpmath.sin(mpmath.mpf(alpha) / 2) ** 2
-        return float(4 * mpmath.sqrt(mpmath.mpf(length) / mpmath.mpf(g)) * mpmath.ellipk(m))
 
 
 @pytest.fixture(scope="module")

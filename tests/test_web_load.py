@@ -10,18 +10,12 @@ import asyncio
 import math
 
 import httpx
-import mpmath
 import pytest
 
 from pendulab.web.child import serve_in_child
+from conftest import ellipk_period
 
 N_REQUESTS = 200
-
-
-def ellipk_period(length: float, alpha: float, g: float = 9.80665) -> float:
-    with mpmath.workdps(30):
-        m = mpmath.sin(mpmath.mpf(alpha) / 2) ** 2
-        return float(4 * mpmath.sqrt(mpmath.mpf(length) / mpmath.mpf(g)) * mpmath.ellipk(m))
 
 
 @pytest.fixture(scope="module")
