@@ -15,7 +15,7 @@ TAYLOR2, RK4, VERLET, TAYLOR = 0, 1, 2, 3
 MAX_TAYLOR_ORDER = 30
 
 
-@njit(cache=True, inline="always")
+@njit(cache=True, nogil=True, inline="always")
 def taylor2_step(z1, z2, h, c):
     """One step of the coursework's second-order Taylor algorithm, equations (3)."""
     s = math.sin(z1)
@@ -24,7 +24,7 @@ def taylor2_step(z1, z2, h, c):
     return z1_next, z2_next
 
 
-@njit(cache=True, inline="always")
+@njit(cache=True, nogil=True, inline="always")
 def rk4_step(z1, z2, h, c):
     """One step of the classical Runge-Kutta method (order 4) for ``z1' = z2, z2' = c sin z1``.
 
@@ -41,7 +41,7 @@ def rk4_step(z1, z2, h, c):
     return z1 + h / 6 * (k1 + 2 * k2 + 2 * k3 + k4), z2 + h / 6 * (l1 + 2 * l2 + 2 * l3 + l4)
 
 
-@njit(cache=True, inline="always")
+@njit(cache=True, nogil=True, inline="always")
 def verlet_step(z1, z2, h, c):
     """One step of Stormer-Verlet (velocity form): symplectic, order 2.
 
@@ -53,7 +53,7 @@ def verlet_step(z1, z2, h, c):
     return z1_next, z2_half + 0.5 * h * c * math.sin(z1_next)
 
 
-@njit(cache=True)  # not inlined: its scratch arrays stay out of the other methods' loops
+@njit(cache=True, nogil=True)  # not inlined: its scratch arrays stay out of the other methods' loops
 def taylor_step(p, z1, z2, h, c):
     """One step of the Taylor method of order ``p``: the generalisation of (3).
 
@@ -93,7 +93,7 @@ def taylor_step(p, z1, z2, h, c):
     return z1_next, z2_next
 
 
-@njit(cache=True, inline="always")
+@njit(cache=True, nogil=True, inline="always")
 def step(method, order, z1, z2, h, c):
     """One step of the integrator ``method`` for ``theta'' = c sin(theta)`` (2).
 
@@ -108,7 +108,7 @@ def step(method, order, z1, z2, h, c):
     return taylor_step(order, z1, z2, h, c)
 
 
-@njit(cache=True)
+@njit(cache=True, nogil=True)
 def fill_trajectory(method, order, alpha, c, h, z1, z2):
     """Fill ``z1, z2`` (length ``n + 1``) with ``Z_j = (z1_j, z2_j)`` from ``Z_0 = (alpha, 0)``."""
     a, b = alpha, 0.0
@@ -120,7 +120,7 @@ def fill_trajectory(method, order, alpha, c, h, z1, z2):
         z2[i] = b
 
 
-@njit(cache=True)
+@njit(cache=True, nogil=True)
 def fill_thinned(method, order, alpha, c, h, n, stride, z1, z2):
     """Run ``n`` steps from ``Z_0 = (alpha, 0)``; keep ``Z_j`` for ``j = 0, stride, 2 stride, ...`` and ``j = n``."""
     a, b = alpha, 0.0
@@ -147,7 +147,7 @@ def trajectory(method, order, alpha, c, h, n):
 FOUND, NO_RETURN, LEFT_OSCILLATION, TOO_EARLY = 0, 1, 2, 3
 
 
-@njit(cache=True)
+@njit(cache=True, nogil=True)
 def first_return(method, order, alpha, c, h, n):
     """Stream (3) until the first return to ``P = (alpha, 0)``, keeping 5 points only.
 
@@ -175,7 +175,7 @@ def first_return(method, order, alpha, c, h, n):
     return NO_RETURN, n, np.zeros(5), np.zeros(5)
 
 
-@njit(cache=True, parallel=True)
+@njit(cache=True, nogil=True, parallel=True)
 def agm_means(alpha, iterations, rtol):
     """``v = (a_n + b_n)/2`` of (7)-(8) from ``(1, cos(alpha_i/2))`` for each amplitude.
 

@@ -58,8 +58,8 @@ def _first_returns(method, order, alphas, cs, h, n_steps):
 
 
 #: The kernel on all cores (one machine) and on one core (a Dask task: Dask parallelises).
-first_returns = njit(cache=True, parallel=True)(_first_returns)
-first_returns_serial = njit(cache=True)(_first_returns)
+first_returns = njit(cache=True, nogil=True, parallel=True)(_first_returns)
+first_returns_serial = njit(cache=True, nogil=True)(_first_returns)
 
 
 def inverse_cubic_rows(z2: np.ndarray, t: np.ndarray, fifth_z2: np.ndarray, fifth_t: np.ndarray):
