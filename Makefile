@@ -1,30 +1,45 @@
-# `make test` and `make report` create .venv/ on first use and install pendulab into it.
+# `make test` and `make report` create .venv/ on first use and install pendulab into it:
+# `make report` only what the report needs (pendulab[report]), `make test` everything
+# (pendulab[test]). Each set has its own stamp, so one after the other installs what is missing.
 PYTHON ?= python3
 VENV := .venv
 BIN := $(VENV)/bin
-STAMP := $(VENV)/.installed
 
-.PHONY: test report bench clean browser
+.PHONY: test lint docs report bench clean browser
+.PRECIOUS: $(VENV)/.installed-%
 
-$(STAMP): pyproject.toml
-	test -x $(BIN)/python || $(PYTHON) -m venv $(VENV)
+$(BIN)/python:
+	$(PYTHON) -m venv $(VENV)
 	$(BIN)/python -m pip install --quiet --upgrade pip
-	$(BIN)/python -m pip install --quiet -e '.[test]'
-	touch $(STAMP)
 
-test: $(STAMP) browser
+$(VENV)/.installed-%: pyproject.toml | $(BIN)/python
+	$(BIN)/python -m pip install --quiet -e '.[$*]'
+	touch $@
+
+test: $(VENV)/.installed-test browser
 	$(BIN)/python -m pytest -n 2
 
-# The browser test drives Debian's Chromium (a test tool's own browser download fails here).
+# ruff and mypy, configured in pyproject.toml.
+lint: $(VENV)/.installed-test
+	$(BIN)/ruff check src
+	$(BIN)/mypy
+
+# The API reference and the narrative pages, into docs/_build/html (warnings are errors).
+docs: $(VENV)/.installed-docs
+	$(BIN)/sphinx-build -W --keep-going -q -b html docs docs/_build/html
+
+# The browser test drives a Chromium; on a machine without one, install Debian's
+# (a test tool's own browser download fails here). Other systems: see the README.
 browser:
-	@command -v chromium >/dev/null 2>&1 || { apt-get update -qq && \
+	@command -v chromium >/dev/null 2>&1 || command -v chromium-browser >/dev/null 2>&1 || \
+		command -v google-chrome >/dev/null 2>&1 || { apt-get update -qq && \
 		DEBIAN_FRONTEND=noninteractive apt-get install -y -qq chromium >/dev/null; }
 
-report: $(STAMP)
+report: $(VENV)/.installed-report
 	$(BIN)/pendulab report --output report.pdf
 
-bench: $(STAMP)
+bench: $(VENV)/.installed-test
 	$(BIN)/python benchmarks/run.py
 
 clean:
-	rm -rf $(VENV) build src/*.egg-info
+	rm -rf $(VENV) build src/*.egg-info docs/_build

@@ -1,4 +1,4 @@
-"""CLI: period, simulate, estimate, length; every bad input of issue 2."""
+"""CLI: period, simulate, estimate, length; every bad input gets one line and exit 2."""
 import math
 import os
 import subprocess

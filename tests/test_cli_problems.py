@@ -1,4 +1,4 @@
-"""CLI: gravity, newton, fit, quadrature; every bad input of issue 3."""
+"""CLI: gravity, newton, fit, quadrature; every bad input gets one line and exit 2."""
 import math
 import subprocess
 import sys

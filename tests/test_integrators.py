@@ -28,7 +28,7 @@ def test_taylor2_is_bit_identical_to_equations_3():
 
 
 def test_figure3_last_row():
-    # spec.md, Figure 3: t = 2.1 -> z1 = 0.796774928412, z2 = -0.297068336875 (12 digits).
+    # Figure 3 of the coursework: t = 2.1 -> z1 = 0.796774928412, z2 = -0.297068336875 (12 digits).
     tr = simulate(1, math.pi / 4, 0.1, 2.1, method="taylor2")
     assert f"{tr.theta[-1]:.12g}" == "0.796774928412"
     assert f"{tr.omega[-1]:.12g}" == "-0.297068336875"

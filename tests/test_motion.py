@@ -106,7 +106,7 @@ def test_exact_motion_conserves_energy():
 
 
 def test_global_error_of_figure3():
-    # Figure 3 of the coursework: z1 at t = 2.1 is 0.796774928412 (12 digits, spec.md).
+    # Figure 3 of the coursework: z1 at t = 2.1 is 0.796774928412 (12 digits, as the coursework prints it).
     tr = simulate(1, math.pi / 4, 0.1, 2.1)
     ge = global_error(tr)
     theta_ref, omega_ref = mp_motion(1.0, math.pi / 4, 2.1)

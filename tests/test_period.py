@@ -18,7 +18,8 @@ from pendulab.period import (
 )
 
 G = 9.80665
-# Amplitudes on a uniform grid and ever closer to pi, down to 1e-12 away (issue 2).
+# Amplitudes on a uniform grid and ever closer to pi, down to 1e-12 away: K(m) is singular
+# there, and the AGM must still be right.
 GRID = np.concatenate([np.linspace(0.0, 3.1, 63), math.pi - np.logspace(-1, -12, 23)])
 
 

@@ -1,6 +1,6 @@
 """The web explorer's JSON API, in process (FastAPI's TestClient): every endpoint, every kind of bad input.
 
-Reference values: the table of Figure 3 (``shared/spec.md``) and the period from
+Reference values: the table of Figure 3 of the coursework and the period from
 mpmath's complete elliptic integral at 30 digits, ``T = 4 sqrt(l/g) K(sin^2(alpha/2))``
 (independent of the AGM loop of ``period.py``).
 """
@@ -25,7 +25,7 @@ def client():
     return TestClient(create_app())
 
 
-# Figure 3 of the coursework (l = 1, alpha = pi/4, h = 0.1), 12 significant digits (spec.md).
+# Figure 3 of the coursework (l = 1, alpha = pi/4, h = 0.1), 12 significant digits as the coursework prints them.
 FIGURE3 = {
     0.0: (0.785398163397, 0.0),
     0.1: (0.750726419819, -0.693434871572),

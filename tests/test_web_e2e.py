@@ -148,7 +148,7 @@ def test_csv_download_is_the_trajectory(page, server, tmp_path):
     info.value.save_as(path)
     lines = path.read_text().splitlines()
     assert lines[0] == "t_s,theta_rad,omega_rad_per_s" and len(lines) == 1 + 22
-    # Figure 3 of the coursework, t = 2.1: z1 = 0.796774928412, z2 = -0.297068336875 (spec.md).
+    # Figure 3 of the coursework, t = 2.1: z1 = 0.796774928412, z2 = -0.297068336875 (as the coursework prints them).
     t, z1, z2 = map(float, lines[-1].split(","))
     assert t == pytest.approx(2.1) and z1 == pytest.approx(0.796774928412, rel=1e-11)
     assert z2 == pytest.approx(-0.297068336875, rel=1e-11)

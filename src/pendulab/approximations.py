@@ -26,12 +26,14 @@ References
 from __future__ import annotations
 
 import math
+from collections.abc import Callable
 from dataclasses import dataclass
-from typing import Any, Callable
+from typing import Any
 
 import numpy as np
 
 from . import _validate as v
+from .cases import G
 from .errors import InputError
 from .period import _check_amplitudes, agm_mean
 
@@ -106,7 +108,7 @@ FORMULAS: dict[str, Formula] = {
 }
 
 
-def approximate_period(name: str, length: Any, amplitude: Any, g: Any = 9.80665) -> Any:
+def approximate_period(name: str, length: Any, amplitude: Any, g: Any = G) -> Any:
     """The period by the formula ``name`` (a key of :data:`FORMULAS` or ``agmN``)."""
     formula = _formula(name)
     t0 = 2 * math.pi * math.sqrt(v.positive("length", length) / v.positive("g", g))

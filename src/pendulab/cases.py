@@ -1,7 +1,8 @@
 """The canonical inputs of the coursework, defined once.
 
-Shared by the tests, the CLI defaults and the report. Sources are the coursework's
-problems (``shared/spec.md``); ``Exact`` keeps the numbers as written there.
+Shared by the tests, the CLI defaults and the report. Each value is the one the
+coursework's problem statement gives (cited beside it); ``Exact`` keeps the numbers as
+the statement writes them, so ``--digits`` computes from the true decimal values.
 """
 from __future__ import annotations
 

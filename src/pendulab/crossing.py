@@ -22,7 +22,6 @@ from .period import agm_period
 from .taylor import MAX_STEPS, method_code, step_count
 
 
-
 @dataclass(frozen=True)
 class PeriodEstimate:
     """The period of one simulation, three ways, against the exact one.

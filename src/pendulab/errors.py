@@ -43,3 +43,11 @@ class NoReturnError(NumericalError):
 
 class LeftOscillationError(NumericalError):
     """The discrete pendulum went over the top (|theta| > pi): no period to find."""
+
+
+class MissingExtraError(ImportError):
+    """An optional dependency that a command or function needs is not installed.
+
+    The message is one line naming the package and the extra that installs it, e.g.
+    ``drawing plots needs matplotlib, which is not installed: pip install 'pendulab[report]'``.
+    """

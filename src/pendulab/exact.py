@@ -62,7 +62,7 @@ class Exact:
         return self.text or str(float(self))
 
     @classmethod
-    def of(cls, value: "Exact | float | int | str") -> "Exact":
+    def of(cls, value: Exact | float | int | str) -> Exact:
         """Coerce a float (its exact binary value), an int or a string (:func:`parse_number`)."""
         if isinstance(value, Exact):
             return value

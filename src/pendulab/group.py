@@ -6,9 +6,9 @@ mean of the remaining digits, rounded half away from zero to 10 decimals
 """
 from __future__ import annotations
 
+from collections.abc import Iterable
 from dataclasses import dataclass
 from decimal import ROUND_HALF_UP, Decimal
-from typing import Iterable
 
 from .errors import InputError
 

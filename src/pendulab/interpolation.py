@@ -81,7 +81,7 @@ def inverse_cubic(z2: np.ndarray, t: np.ndarray, fifth: tuple[float, float]) -> 
     z2 = np.asarray(z2, dtype=float)
     t = np.asarray(t, dtype=float)
     coef = divided_differences(z2, t)
-    value = newton_eval(coef, z2, 0.0)
+    value = float(newton_eval(coef, z2, 0.0))
     five = divided_differences(np.append(z2, fifth[0]), np.append(t, fifth[1]))
     fourth = float(five[-1])
     error = fourth * float(np.prod(0.0 - z2))

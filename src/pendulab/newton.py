@@ -19,8 +19,8 @@ References
 from __future__ import annotations
 
 import math
+from collections.abc import Callable
 from dataclasses import dataclass, field
-from typing import Callable
 
 import numpy as np
 
@@ -172,7 +172,7 @@ def newton(
     def inside(t: float) -> bool:
         return domain is None or domain[0] < t < domain[1]
 
-    if not inside(x):
+    if domain is not None and not inside(x):
         raise InputError("x0", x0, f"in the domain ({domain[0]:g}, {domain[1]:g})")
     xs, fs, dfs = [x], [f(x)], [df(x)]
     scale = f_scale
@@ -206,7 +206,8 @@ def newton(
     delta = rounding_level(xs[-1], dfs[-1], s)
     q, rho, k_max = quotients(xs, delta)
     const = abs(d2f(xs[-1]) / (2 * dfs[-1])) if d2f is not None else None
-    c_est = const if const is not None else (q[k_max] if k_max is not None else 0.0)
+    q_max = q[k_max] if k_max is not None else None
+    c_est = const if const is not None else (q_max if q_max is not None else 0.0)
     last = abs(xs[-1] - xs[-2]) if len(xs) > 1 else 0.0
     criterion = (
         f"stop when |x_(k+1) - x_k| <= {tol:.3e}" if tol is not None else

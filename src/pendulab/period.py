@@ -18,7 +18,7 @@ from typing import Any
 import numpy as np
 
 from . import _validate as v
-from .cases import G, G_EXACT
+from .cases import G_EXACT, G
 from .exact import Exact
 
 #: Upper bound on AGM iterations: from b0 = 1e-300 the AGM converges in 17.
@@ -65,17 +65,17 @@ def agm_mean(b0: Any, iterations: int | None = None) -> Any:
             for _ in range(iterations):
                 a, b = 0.5 * (a + b), math.sqrt(a * b)
         return 0.5 * (a + b)
-    b = np.array(b0, dtype=float)
-    a = np.ones_like(b)
+    bs = np.array(b0, dtype=float)
+    as_ = np.ones_like(bs)
     if iterations is None:
         for _ in range(_MAX_ITERATIONS):
-            if np.all(a - b <= _RTOL * a):
+            if np.all(as_ - bs <= _RTOL * as_):
                 break
-            a, b = 0.5 * (a + b), np.sqrt(a * b)
+            as_, bs = 0.5 * (as_ + bs), np.sqrt(as_ * bs)
     else:
         for _ in range(iterations):
-            a, b = 0.5 * (a + b), np.sqrt(a * b)
-    return 0.5 * (a + b)
+            as_, bs = 0.5 * (as_ + bs), np.sqrt(as_ * bs)
+    return 0.5 * (as_ + bs)
 
 
 def _check_amplitudes(amplitude: Any) -> Any:

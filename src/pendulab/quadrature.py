@@ -34,9 +34,9 @@ References
 from __future__ import annotations
 
 import math
+from collections.abc import Callable
 from dataclasses import dataclass
 from fractions import Fraction
-from typing import Callable
 
 import numpy as np
 
@@ -227,6 +227,9 @@ def convergence_table(length, amplitude, ns, exact: float, g=G, substitution: bo
     periods = [quadrature_period(length, amplitude, n, g) for n in ns]
     errors = [abs(p - exact) for p in periods]
     rates = observed_rates(ns, errors, floor)
+    sp: list[float | None]
+    se: list[float | None]
+    sr: list[float | None]
     if substitution:
         sp = [quadrature_period(length, amplitude, n, g, substitution=True) for n in ns]
         se = [abs(p - exact) for p in sp]

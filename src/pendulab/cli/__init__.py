@@ -10,7 +10,8 @@ import sys
 
 import click
 
-from ..errors import PendulabError
+from .._version import __version__
+from ..errors import MissingExtraError, PendulabError
 
 # command name -> "module:function", relative to this package.
 COMMANDS = {
@@ -54,7 +55,7 @@ class LazyGroup(click.Group):
 
 
 @click.group(cls=LazyGroup, context_settings={"help_option_names": ["-h", "--help"]})
-@click.version_option(package_name="pendulab")
+@click.version_option(__version__, prog_name="pendulab")
 def cli() -> None:
     """pendulab: the nonlinear simple pendulum and the numerical methods taught with it.
 
@@ -87,6 +88,9 @@ def main(argv: list[str] | None = None) -> int:
         return 2
     except PendulabError as exc:
         click.echo(f"{where}: error: {_cli_message(exc)}", err=True)
+        return 2
+    except MissingExtraError as exc:
+        click.echo(f"{where}: error: {exc}", err=True)
         return 2
     except KeyboardInterrupt:
         click.echo(f"{where}: interrupted", err=True)

@@ -4,10 +4,12 @@ from __future__ import annotations
 import json
 import math
 import sys
-from typing import Any, Callable
+from collections.abc import Callable
+from typing import Any
 
 import click
 
+from ..cases import G_TEXT
 from ..errors import InputError
 from ..exact import Exact, parse_angle, parse_number
 
@@ -19,7 +21,7 @@ class _Type(click.ParamType):
         opt = param.opts[-1] if param is not None and param.opts else (param.name if param else "value")
         self.fail(f"{opt} = {exc.value!s} is not allowed: must be {exc.allowed}", param, ctx)
 
-    def convert(self, value, param, ctx):  # noqa: D401
+    def convert(self, value, param, ctx):
         if not isinstance(value, str):
             return value
         try:
@@ -98,7 +100,7 @@ def json_option(f: Callable) -> Callable:
 
 def g_option(f: Callable) -> Callable:
     return click.option(
-        "--g", "g", type=POSITIVE, default="9.80665", show_default=True, help="Gravitational acceleration, m/s^2."
+        "--g", "g", type=POSITIVE, default=G_TEXT, show_default=True, help="Gravitational acceleration, m/s^2."
     )(f)
 
 
@@ -127,18 +129,24 @@ def fmt(x: float, digits: int = 15) -> str:
     return f"{x:.{digits}g}"
 
 
+def check_plot_path(name: str, path: str) -> None:
+    """Before the work: ``path`` can be written and matplotlib (``pendulab[report]``) is there."""
+    from .._atomic import check_writable
+    from .._extras import require
+
+    check_writable(name, path)
+    require("matplotlib", f"--{name}")
+
+
 def save_plot(draw: Callable, path, size: tuple[float, float] = (6.4, 4.2)) -> None:
-    """Call ``draw(ax)`` on a fresh figure and save it atomically (format from the extension)."""
-    import matplotlib
+    """Call ``draw(ax)`` on a fresh figure and save it atomically (format from the extension).
 
-    matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
-
+    A ``Figure`` made without pyplot: no backend switch, no figure left in pyplot's list.
+    """
     from .._atomic import save_figure
+    from .._extras import require
 
-    fig, ax = plt.subplots(figsize=size, layout="constrained")
-    try:
-        draw(ax)
-        save_figure(fig, path, dpi=150)
-    finally:
-        plt.close(fig)
+    figure = require("matplotlib.figure", "drawing plots")
+    fig = figure.Figure(figsize=size, layout="constrained")
+    draw(fig.subplots())
+    save_figure(fig, path, dpi=150)

@@ -8,7 +8,7 @@ import click
 
 from ..errors import InputError
 from ..exact import parse_angle
-from ._common import POSITIVE, POSITIVE_LIST, _Type, emit_json, g_option, json_option, save_plot
+from ._common import POSITIVE, POSITIVE_LIST, _Type, check_plot_path, emit_json, g_option, json_option, save_plot
 
 #: The amplitudes (degrees) of the approximations table.
 TABLE_DEGREES = (1, 10, 30, 60, 90, 120, 150, 170, 179, 179.9)
@@ -81,11 +81,10 @@ def approximations(plot, as_json):
     """
     import numpy as np
 
-    from .._atomic import check_writable
     from ..approximations import approximation_errors
 
     if plot:
-        check_writable("plot", plot)
+        check_plot_path("plot", plot)
     table = approximation_errors(np.radians(TABLE_DEGREES))
     fine = approximation_errors()  # 1000 amplitudes, 0.1 to 179.9 degrees
     tols = (1e-2, 1e-4, 1e-6)
@@ -136,14 +135,18 @@ def approximations(plot, as_json):
 def sweep(amplitudes, steps, methods, length, output, plot, scheduler, g, as_json):
     """The period error of each method over a range of amplitudes (many pendulums at once)."""
     from .._atomic import check_writable
+    from .._extras import require
     from ..sweep import sweep as run
 
     if output:
         check_writable("output", output)
         if not output.lower().endswith((".csv", ".parquet")):
             raise InputError("output", output, "a file name ending in .csv or .parquet")
+        require("pyarrow", f"--output {output}")
+    if scheduler:
+        require("dask.distributed", "--scheduler")
     if plot:
-        check_writable("plot", plot)
+        check_plot_path("plot", plot)
     total = len(amplitudes) * len(steps) * len(methods)
     with click.progressbar(length=total, label="pendulums", file=sys.stderr) as bar:
         result = run(amplitudes, steps, methods, float(length), float(g), progress=bar.update, scheduler=scheduler)

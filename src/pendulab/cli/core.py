@@ -4,7 +4,18 @@ from __future__ import annotations
 import click
 
 from ..cases import EXAMPLE_GROUP, FIGURE3_STEP, FIGURE3_T_MAX, PROBLEM3_AMPLITUDE, PROBLEM3_STEPS
-from ._common import ANGLE, FLOAT, POSITIVE, POSITIVE_LIST, emit_json, fmt, g_option, json_option, save_plot
+from ._common import (
+    ANGLE,
+    FLOAT,
+    POSITIVE,
+    POSITIVE_LIST,
+    check_plot_path,
+    emit_json,
+    fmt,
+    g_option,
+    json_option,
+    save_plot,
+)
 
 _LENGTH_HELP = "Pendulum length l, m (> 0)."
 _ANGLE_HELP = "Amplitude alpha in [0, pi): 0.785, pi/4, 4pi/5, 45deg, 45°."
@@ -74,12 +85,11 @@ def period(length, amplitude, iterations, digits, g, as_json):
 @json_option
 def simulate(length, amplitude, step, t_max, t0, digits, as_csv, plot, phase, method, g, as_json):
     """Simulate the pendulum by the Taylor algorithm (3): the table t, z1, z2."""
-    from .._atomic import check_writable
     from ..taylor import simulate as run
 
     for name, path in (("plot", plot), ("phase", phase)):
         if path:
-            check_writable(name, path)
+            check_plot_path(name, path)
     tr = run(float(length), float(amplitude), float(step), t_max, t0, float(g), method)
     if plot:
         save_plot(lambda ax: _plots().time_series(ax, tr), plot)

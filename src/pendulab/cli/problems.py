@@ -10,7 +10,7 @@ import click
 from .. import cases
 from ..errors import InputError
 from ..exact import parse_angle, parse_number
-from ._common import ANGLE, POSITIVE, _Type, emit_json, fmt, g_option, json_option
+from ._common import ANGLE, POSITIVE, _Type, check_plot_path, emit_json, fmt, g_option, json_option
 
 _NUM = r"[+-]?(?:\d+\.?\d*|\.\d+)(?:[eE][+-]?\d+)?"
 _UNIT = re.compile(rf"^\s*(?P<num>{_NUM})\s*(?P<unit>[a-zA-Z]*)\s*$")
@@ -199,11 +199,10 @@ def newton(length, target, x0, g, as_json):
 @json_option
 def fit(length, amplitude, step, t_max, decimals, plot, g, as_json):
     """Problem 4: least-squares fit of the Taylor data by basis (10), via the normal equations."""
-    from .._atomic import check_writable
     from ..problems import problem4
 
     if plot:
-        check_writable("plot", plot)
+        check_plot_path("plot", plot)
     r = problem4(float(length), float(amplitude), float(step), None if t_max is None else float(t_max),
                  decimals, float(g))
     f, d = r.fit, r.fit.definiteness
@@ -259,7 +258,7 @@ def fit(length, amplitude, step, t_max, decimals, plot, g, as_json):
 @click.option("-l", "--length", type=POSITIVE, default=cases.PROBLEM5.length.text, show_default=True, help="Pendulum length l, m.")
 @click.option("-a", "--amplitude", type=ANGLE, default=cases.PROBLEM5.amplitude.text, show_default=True,
               help="Amplitude alpha in [0, pi): 4pi/5, 144deg.")
-@click.option("--n", "ns", type=COUNTS, default="1,10,100,1000,10000,100000", show_default=True,
+@click.option("--n", "ns", type=COUNTS, default=",".join(map(str, (1, *cases.PROBLEM5_N))), show_default=True,
               help="Comma-separated numbers of subintervals.")
 @click.option("--substitution", is_flag=True,
               help="Also integrate after sin(theta/2) = sin(alpha/2) sin(phi), which removes the singularity.")

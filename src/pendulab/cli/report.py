@@ -3,11 +3,15 @@ from __future__ import annotations
 
 import click
 
+from ..cases import EXAMPLE_GROUP
 from ..errors import InputError
+
+#: The example group as the option writes it: ``262,407,634``.
+EXAMPLE = ",".join(map(str, EXAMPLE_GROUP))
 
 
 class StudentsType(click.ParamType):
-    """Comma-separated student numbers: positive integers, e.g. ``262,407,634``."""
+    """Comma-separated student numbers: positive integers, e.g. the example group's."""
 
     name = "numbers"
 
@@ -17,7 +21,7 @@ class StudentsType(click.ParamType):
         items = [s.strip() for s in str(value).split(",")]
         if not items or any(not s.isdigit() or int(s) <= 0 for s in items):
             self.fail(
-                f"--students = {value!r} is not allowed: must be comma-separated positive integers, e.g. 262,407,634",
+                f"--students = {value!r} is not allowed: must be comma-separated positive integers, e.g. {EXAMPLE}",
                 param,
                 ctx,
             )
@@ -28,7 +32,7 @@ class StudentsType(click.ParamType):
 @click.option(
     "--students",
     type=StudentsType(),
-    default="262,407,634",
+    default=EXAMPLE,
     show_default=True,
     help="The group's student numbers; their digit sum gives the pendulum length of problem 3(b).",
 )
@@ -50,7 +54,11 @@ class StudentsType(click.ParamType):
 def report(students: tuple[int, ...], lang: str, output: str) -> None:
     """Write the coursework report: every question 1(a)-5(d) answered, at most 15 A4 pages."""
     from .._atomic import check_writable
+    from .._extras import require
     from ..group import group_length
+
+    for package in ("typst", "matplotlib"):
+        require(package, "pendulab report")
     from ..report import build_report
 
     check_writable("output", output)  # before the work

@@ -12,6 +12,11 @@ def serve(port: int, host: str) -> None:
     """Start the web explorer: simulate, animate and plot the pendulum in the browser."""
     import socket
 
+    from .._extras import require
+
+    for package in ("fastapi", "uvicorn", "plotly"):
+        require(package, "pendulab serve")
+
     # Bind once here so a busy port or an unknown host is one clear line, not a uvicorn traceback.
     try:
         infos = socket.getaddrinfo(host, port, type=socket.SOCK_STREAM)
@@ -19,7 +24,7 @@ def serve(port: int, host: str) -> None:
             s.setsockopt(socket.SOL_SOCKET, socket.SO_REUSEADDR, 1)
             s.bind(infos[0][4])
     except OSError as exc:
-        raise click.BadParameter(f"cannot listen on {host}:{port}: {exc.strerror or exc}", param_hint="--host/--port")
+        raise click.BadParameter(f"cannot listen on {host}:{port}: {exc.strerror or exc}", param_hint="--host/--port") from None
 
     import uvicorn
 

@@ -1,7 +1,7 @@
 """Figures 1 and 2 of the coursework, and the period error against the step."""
 from __future__ import annotations
 
-from typing import Sequence
+from collections.abc import Sequence
 
 import numpy as np
 

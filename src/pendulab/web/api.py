@@ -18,13 +18,14 @@ from typing import Any
 import numpy as np
 
 from .. import _validate as v
-from ..cases import G, PROBLEM5
+from ..cases import G_TEXT, PROBLEM5, G
 from ..errors import InputError, PendulabError
 from ..exact import parse_angle, parse_number
 
-#: A request that would run more steps than this is refused (issue 5).
+#: A request that would run more steps than this is refused, so one request cannot hold the
+#: server's cores for long.
 MAX_STEPS = 10_000_000
-#: A request that would return more points than this is refused (issue 5).
+#: A request that would return more points than this is refused, so one answer stays a few MB.
 MAX_POINTS = 1_000_000
 #: Points returned for plotting when the request does not say (thinned evenly).
 DEFAULT_PLOT_POINTS = 2_000
@@ -46,7 +47,7 @@ DEFAULTS = {
     "unit": "deg",
     "step": "1e-3",
     "t_max": "20",
-    "g": "9.80665",
+    "g": G_TEXT,
     "method": "taylor2",
 }
 
@@ -58,7 +59,7 @@ _ALLOWED = {
     "amplitude": "an angle in [0, pi) rad, such as 0.785, pi/4, 4pi/5 or 45deg",
     "step": "a finite number > 0 (s), such as 1e-3",
     "t_max": "a finite number > 0 (s), such as 20",
-    "g": "a finite number > 0 (m/s^2), such as 9.80665",
+    "g": f"a finite number > 0 (m/s^2), such as {G_TEXT}",
 }
 
 

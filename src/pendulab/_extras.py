@@ -1,0 +1,57 @@
+"""Optional dependencies: import one, or say in one line which extra installs it.
+
+The core (``pip install pendulab``) computes periods and simulations with numpy, scipy,
+mpmath, numba and click; the rest comes with the extras of ``pyproject.toml``.
+"""
+from __future__ import annotations
+
+import importlib
+import importlib.util
+import sys
+from types import ModuleType
+
+from .errors import MissingExtraError
+
+#: Top-level package -> the extra of pyproject.toml that installs it.
+EXTRA_OF = {
+    "matplotlib": "report",
+    "typst": "report",
+    "fastapi": "web",
+    "uvicorn": "web",
+    "plotly": "web",
+    "pyarrow": "sweep",
+    "dask": "dask",
+    "distributed": "dask",
+    "pandas": "pandas",
+}
+
+
+def require(module: str, purpose: str) -> ModuleType:
+    """Import ``module``; when its package is missing raise :class:`MissingExtraError`.
+
+    Parameters
+    ----------
+    module : str
+        A module of one of the packages in :data:`EXTRA_OF` (``"pyarrow.parquet"``).
+    purpose : str
+        What needs it, in words (``"writing .parquet files"``); the message starts with it.
+    """
+    top = module.partition(".")[0]
+    try:
+        return importlib.import_module(module)
+    except ModuleNotFoundError as exc:
+        # Only the package itself being absent is "not installed"; a broken install re-raises.
+        if not _absent(top):
+            raise
+        extra = EXTRA_OF[top]
+        raise MissingExtraError(
+            f"{purpose} needs {top}, which is not installed: pip install 'pendulab[{extra}]'",
+            name=top,
+        ) from exc
+
+
+def _absent(package: str) -> bool:
+    """True when ``package`` cannot be imported at all (``None`` in ``sys.modules`` blocks it)."""
+    if package in sys.modules:
+        return sys.modules[package] is None
+    return importlib.util.find_spec(package) is None

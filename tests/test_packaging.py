@@ -1,0 +1,104 @@
+"""Packaging: the version, the lean core and the one-line message for a missing extra."""
+import re
+import subprocess
+import sys
+import tomllib
+from pathlib import Path
+
+import pytest
+
+import pendulab
+from conftest import assert_one_line_error
+
+ROOT = Path(__file__).resolve().parents[1]
+PYPROJECT = tomllib.loads((ROOT / "pyproject.toml").read_text())
+# Every package an extra brings; the core must work with all of them absent.
+OPTIONAL = ("matplotlib", "typst", "rich", "fastapi", "uvicorn", "plotly", "pyarrow", "dask", "distributed", "pandas")
+
+
+def test_version_is_single_sourced(cli):
+    project = PYPROJECT["project"]
+    assert "version" in project["dynamic"] and "version" not in project
+    assert PYPROJECT["tool"]["setuptools"]["dynamic"]["version"] == {"attr": "pendulab._version.__version__"}
+    assert re.fullmatch(r"\d+\.\d+\.\d+", pendulab.__version__)
+    res = cli("--version")
+    assert res.code == 0
+    assert res.out.strip() == f"pendulab, version {pendulab.__version__}"
+
+
+def test_metadata_licence_and_typed_marker():
+    assert PYPROJECT["project"]["license"] == "MIT"  # an SPDX expression, not a table
+    assert (ROOT / "src" / "pendulab" / "py.typed").is_file()
+    assert "py.typed" in PYPROJECT["tool"]["setuptools"]["package-data"]["pendulab"]
+
+
+def test_core_dependencies_are_lean():
+    names = {re.match(r"[A-Za-z0-9_.-]+", d).group(0).lower() for d in PYPROJECT["project"]["dependencies"]}
+    assert names == {"numpy", "scipy", "mpmath", "numba", "click"}
+    extras = PYPROJECT["project"]["optional-dependencies"]
+    for extra in ("report", "web", "sweep", "dask", "test", "docs", "all"):
+        assert extra in extras
+
+
+def test_each_optional_package_belongs_to_a_declared_extra():
+    from pendulab._extras import EXTRA_OF
+
+    extras = PYPROJECT["project"]["optional-dependencies"]
+    for package, extra in EXTRA_OF.items():
+        listed = " ".join(extras[extra])
+        assert package in listed or (package == "distributed" and "dask[distributed]" in listed), (package, extra)
+
+
+def test_core_runs_without_any_extra():
+    """Periods, simulations and the period estimate with every optional package blocked."""
+    code = f"""
+import sys
+for name in {OPTIONAL!r}:
+    sys.modules[name] = None
+from pendulab.cli import main
+assert main(["period", "-l", "1", "-a", "pi/4"]) == 0
+assert main(["simulate", "-l", "1", "-a", "pi/4", "--step", "0.1", "--t-max", "0.3"]) == 0
+assert main(["estimate", "-l", "1", "-a", "pi/4", "--step", "1e-3"]) == 0
+from pendulab import problems
+problems.problem1()
+problems.problem3()
+print("core ok")
+"""
+    res = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, timeout=300)
+    assert res.returncode == 0, res.stderr
+    assert "core ok" in res.stdout
+
+
+@pytest.mark.parametrize(
+    ("args", "package", "extra"),
+    [
+        (["simulate", "-l", "1", "-a", "pi/4", "--plot", "{tmp}/f.png"], "matplotlib", "report"),
+        (["fit", "--plot", "{tmp}/f.png"], "matplotlib", "report"),
+        (["approximations", "--plot", "{tmp}/f.png"], "matplotlib", "report"),
+        (["report", "--output", "{tmp}/r.pdf"], "typst", "report"),
+        (["report", "--output", "{tmp}/r.pdf"], "matplotlib", "report"),
+        (["serve", "--port", "1"], "fastapi", "web"),
+        (["serve", "--port", "1"], "plotly", "web"),
+        (["sweep", "-a", "1deg:2deg:2", "--output", "{tmp}/s.parquet"], "pyarrow", "sweep"),
+        (["sweep", "-a", "1deg:2deg:2", "--output", "{tmp}/s.csv"], "pyarrow", "sweep"),
+        (["sweep", "-a", "1deg:2deg:2", "--scheduler", "tcp://127.0.0.1:1"], "dask", "dask"),
+    ],
+)
+def test_missing_extra_is_one_line(cli, monkeypatch, tmp_path, args, package, extra):
+    monkeypatch.setitem(sys.modules, package, None)  # `import package` now fails as if absent
+    res = cli(*[a.format(tmp=tmp_path) for a in args])
+    assert_one_line_error(res, f"needs {package}, which is not installed", f"pip install 'pendulab[{extra}]'")
+    assert list(tmp_path.iterdir()) == []  # refused before any work or output
+
+
+def test_require_reraises_a_broken_install(monkeypatch):
+    """Only the package itself being absent is 'not installed'; other import errors pass through."""
+    from pendulab._extras import require
+    from pendulab.errors import MissingExtraError
+
+    monkeypatch.setitem(sys.modules, "pandas", None)
+    with pytest.raises(MissingExtraError, match=r"pendulab\[pandas\]"):
+        require("pandas", "to_frame()")
+    with pytest.raises(ModuleNotFoundError) as info:
+        require("pyarrow.no_such_module", "x")
+    assert not isinstance(info.value, MissingExtraError)
