@@ -36,6 +36,7 @@ from . import _validate as v
 from .cases import G
 from .errors import InputError
 from .period import _check_amplitudes, agm_mean
+from .results import Result
 
 _GANLEY_F = math.sqrt(3) / 2
 
@@ -126,8 +127,8 @@ def _formula(name: str) -> Formula:
     raise InputError("formula", repr(name), "one of " + ", ".join(FORMULAS) + ", agmN (N an integer)")
 
 
-@dataclass(frozen=True)
-class ApproximationErrors:
+@dataclass(frozen=True, eq=False)
+class ApproximationErrors(Result):
     """Relative errors ``T_approx/T - 1`` of each formula at each amplitude.
 
     Attributes
@@ -145,6 +146,9 @@ class ApproximationErrors:
     exact_ratio: np.ndarray
     formulas: tuple[Formula, ...]
     errors: dict[str, np.ndarray]
+
+    def _columns(self) -> dict[str, np.ndarray]:
+        return {"amplitude": self.amplitudes, "exact_ratio": self.exact_ratio, **self.errors}
 
     def max_amplitude_within(self, name: str, tol: float) -> float:
         """The largest tabulated amplitude up to which ``|error| <= tol`` holds throughout."""

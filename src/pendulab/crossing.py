@@ -19,11 +19,12 @@ from .cases import G
 from .errors import InputError, LeftOscillationError, NoReturnError, NumericalError
 from .interpolation import InverseInterpolation, inverse_cubic
 from .period import agm_period
+from .results import Result
 from .taylor import MAX_STEPS, method_code, step_count
 
 
-@dataclass(frozen=True)
-class PeriodEstimate:
+@dataclass(frozen=True, eq=False)
+class PeriodEstimate(Result):
     """The period of one simulation, three ways, against the exact one.
 
     Attributes

@@ -11,13 +11,14 @@ from dataclasses import dataclass
 from decimal import ROUND_HALF_UP, Decimal
 
 from .errors import InputError
+from .results import Result
 
 #: Decimal places of the rounded length (problem 3(b)).
 DECIMALS = 10
 
 
-@dataclass(frozen=True)
-class GroupLength:
+@dataclass(frozen=True, eq=False)
+class GroupLength(Result):
     """The length rule's steps: numbers, their sum, the digits ``m``, and ``l``."""
 
     numbers: tuple[int, ...]

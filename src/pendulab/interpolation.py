@@ -14,6 +14,8 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from .results import Result
+
 
 def divided_differences(x: np.ndarray, y: np.ndarray) -> np.ndarray:
     """Newton coefficients ``f[x0], f[x0,x1], ..., f[x0..xn]`` of the table ``(x, y)``.
@@ -37,8 +39,8 @@ def newton_eval(coef: np.ndarray, x_nodes: np.ndarray, x: float | np.ndarray) ->
     return p if np.ndim(p) else float(p)
 
 
-@dataclass(frozen=True)
-class InverseInterpolation:
+@dataclass(frozen=True, eq=False)
+class InverseInterpolation(Result):
     """``p`` interpolating ``(z2_j, t_j)``, ``j = 0..3``, its value ``p(0)`` and error estimate.
 
     Attributes

@@ -35,6 +35,7 @@ import numpy as np
 
 from . import _validate as v
 from .errors import InputError, NumericalError
+from .results import Result
 
 BasisFn = Callable[[np.ndarray], np.ndarray]
 
@@ -84,8 +85,8 @@ def normal_equations(t, y, basis: Sequence[BasisFn]) -> tuple[np.ndarray, np.nda
     return a, phi.T @ np.asarray(y, dtype=float)
 
 
-@dataclass(frozen=True)
-class Definiteness:
+@dataclass(frozen=True, eq=False)
+class Definiteness(Result):
     """Why the normal matrix is symmetric positive definite.
 
     Attributes
@@ -148,8 +149,8 @@ def definiteness(a: np.ndarray, unrounded: np.ndarray | None = None) -> Definite
     )
 
 
-@dataclass(frozen=True)
-class LeastSquaresFit:
+@dataclass(frozen=True, eq=False)
+class LeastSquaresFit(Result):
     """A least-squares fit by the normal equations (problem 4).
 
     Attributes

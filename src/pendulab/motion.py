@@ -39,6 +39,7 @@ import numpy as np
 
 from . import _validate as v
 from .cases import G
+from .results import Result
 
 #: Below this complementary modulus ``k' = cos(alpha/2)`` (``alpha`` above about 2.94 rad)
 #: scipy's ``ellipj`` loses more than a few ulps; the AGM from ``k'`` takes over.
@@ -102,8 +103,8 @@ def quarter_period(amplitude: float) -> float:
     return float(ellipkm1(math.cos(0.5 * alpha) ** 2))
 
 
-@dataclass(frozen=True)
-class ExactMotion:
+@dataclass(frozen=True, eq=False)
+class ExactMotion(Result):
     """``theta(t)`` and ``theta'(t)`` of the exact solution at the times ``t``."""
 
     t: np.ndarray
@@ -112,6 +113,9 @@ class ExactMotion:
     length: float
     amplitude: float
     g: float
+
+    def _columns(self) -> dict[str, np.ndarray]:
+        return {"t": self.t, "theta": self.theta, "omega": self.omega}
 
 
 def exact_motion(length: Any, amplitude: Any, t: Any, g: Any = G) -> ExactMotion:
@@ -157,8 +161,8 @@ def energy(theta: Any, omega: Any, length: Any, g: Any = G) -> np.ndarray:
     return 0.5 * np.asarray(omega) ** 2 - g / length * np.cos(theta)
 
 
-@dataclass(frozen=True)
-class GlobalError:
+@dataclass(frozen=True, eq=False)
+class GlobalError(Result):
     """The error of a simulated trajectory against the exact motion, point by point.
 
     Attributes
@@ -186,6 +190,10 @@ class GlobalError:
     max_energy_drift: float
     method: str
     step: float
+
+    def _columns(self) -> dict[str, np.ndarray]:
+        return {"t": self.t, "theta_error": self.theta_error, "omega_error": self.omega_error,
+                "energy_drift": self.energy_drift}
 
 
 def global_error(trajectory) -> GlobalError:

@@ -27,6 +27,7 @@ import numpy as np
 from . import _validate as v
 from .cases import G
 from .errors import InputError, NumericalError
+from .results import Result
 
 #: Unit roundoff of IEEE double precision.
 U = 2.0**-53
@@ -37,8 +38,8 @@ Fn = Callable[[float], float]
 
 
 # --------------------------------------------------------------------------- iteration
-@dataclass(frozen=True)
-class NewtonResult:
+@dataclass(frozen=True, eq=False)
+class NewtonResult(Result):
     """Every iterate of a Newton run and what it says about convergence.
 
     Attributes
@@ -231,8 +232,8 @@ def newton(
 
 
 # --------------------------------------------------------------------------- interval
-@dataclass(frozen=True)
-class Condition:
+@dataclass(frozen=True, eq=False)
+class Condition(Result):
     """One sufficient condition, whether it holds, and the numbers that show it."""
 
     name: str
@@ -241,8 +242,8 @@ class Condition:
     values: dict = field(default_factory=dict)
 
 
-@dataclass(frozen=True)
-class IntervalCheck:
+@dataclass(frozen=True, eq=False)
+class IntervalCheck(Result):
     """The classical sufficient conditions for Newton's method on ``[a, b]`` ([2]_).
 
     When all hold, ``f`` has exactly one zero ``z`` in ``[a, b]`` and Newton's method

@@ -13,6 +13,7 @@ from . import cases
 from .crossing import PeriodEstimate, estimate_period, observed_orders
 from .group import GroupLength, group_length
 from .period import agm_period
+from .results import Result
 from .taylor import Trajectory, simulate
 
 if TYPE_CHECKING:  # names for annotations; the modules load when a problem runs
@@ -24,8 +25,8 @@ if TYPE_CHECKING:  # names for annotations; the modules load when a problem runs
 
 
 # --------------------------------------------------------------------------- problem 3
-@dataclass(frozen=True)
-class Problem3:
+@dataclass(frozen=True, eq=False)
+class Problem3(Result):
     """Problem 3: the Taylor simulation and the period recovered from it.
 
     Attributes
@@ -131,8 +132,8 @@ def problem1(
 
 
 # --------------------------------------------------------------------------- problem 2
-@dataclass(frozen=True)
-class Problem2:
+@dataclass(frozen=True, eq=False)
+class Problem2(Result):
     """Problem 2: the amplitude with ``T~ = target`` by Newton's method on (9).
 
     Attributes
@@ -174,7 +175,7 @@ class Problem2:
     justification: str
 
     @property
-    def asymptotic_constant(self) -> float:
+    def asymptotic_constant(self) -> float | None:
         return self.run.asymptotic_constant
 
     @property
@@ -244,8 +245,8 @@ PROBLEM4_TOLERANCE = 1e-5
 PROBLEM4_FINE = 20
 
 
-@dataclass(frozen=True)
-class Problem4:
+@dataclass(frozen=True, eq=False)
+class Problem4(Result):
     """Problem 4: least-squares fit of the Taylor data by (10).
 
     Attributes
@@ -366,8 +367,8 @@ def problem4(
 
 
 # --------------------------------------------------------------------------- problem 5
-@dataclass(frozen=True)
-class Problem5:
+@dataclass(frozen=True, eq=False)
+class Problem5(Result):
     """Problem 5: the period integral (1) by rule (11), simple and composite.
 
     Attributes

@@ -43,6 +43,7 @@ import numpy as np
 from . import _validate as v
 from .cases import G
 from .errors import InputError
+from .results import Result
 
 #: Subintervals evaluated per vectorised chunk: 3 * 2^16 doubles per array, ~1.5 MB.
 CHUNK = 1 << 16
@@ -184,8 +185,8 @@ def quadrature_period(length, amplitude, n: int, g=G, substitution: bool = False
     return period_prefactor(length, g) * s
 
 
-@dataclass(frozen=True)
-class QuadratureRow:
+@dataclass(frozen=True, eq=False)
+class QuadratureRow(Result):
     """One row of the 5(d) table.
 
     Attributes
@@ -231,9 +232,9 @@ def convergence_table(length, amplitude, ns, exact: float, g=G, substitution: bo
     se: list[float | None]
     sr: list[float | None]
     if substitution:
-        sp = [quadrature_period(length, amplitude, n, g, substitution=True) for n in ns]
-        se = [abs(p - exact) for p in sp]
-        sr = observed_rates(ns, se, floor)
+        sub_periods = [quadrature_period(length, amplitude, n, g, substitution=True) for n in ns]
+        sub_errors = [abs(p - exact) for p in sub_periods]
+        sp, se, sr = list(sub_periods), list(sub_errors), observed_rates(ns, sub_errors, floor)
     else:
         sp = se = sr = [None] * len(ns)
     return [QuadratureRow(*row) for row in zip(ns, periods, errors, rates, sp, se, sr)]

@@ -13,6 +13,7 @@ import numpy as np
 from . import _validate as v
 from .cases import G
 from .errors import InputError
+from .results import Result
 
 #: Integrators by name: (kernel code, order). ``taylor2`` is the coursework's (3);
 #: ``taylor:P`` (any integer ``1 <= P <= 30``) is the Taylor method of order ``P``.
@@ -45,8 +46,8 @@ def step_count(t0: float, t_max: float, step: float) -> int:
     return int(round((t_max - t0) / step))
 
 
-@dataclass(frozen=True)
-class Trajectory:
+@dataclass(frozen=True, eq=False)
+class Trajectory(Result):
     """The points ``Z_j = (z1_j, z2_j)`` at times ``t_j = t0 + j h``, ``j = 0..N``.
 
     Attributes
@@ -73,6 +74,9 @@ class Trajectory:
     def n_steps(self) -> int:
         """``N`` of (6): the steps simulated (more than ``len(t) - 1`` when thinned)."""
         return int(round((self.t[-1] - self.t0) / self.step))
+
+    def _columns(self) -> dict[str, np.ndarray]:
+        return {"t": self.t, "theta": self.theta, "omega": self.omega}
 
     def time_series(self) -> np.ndarray:
         """List (i) of problem 3: the points ``(t_i, z1_i)``, shape (N+1, 2)."""

@@ -29,6 +29,7 @@ from decimal import ROUND_HALF_UP, Decimal
 
 from . import _validate as v
 from .errors import InputError
+from .results import Result
 
 #: The rule used for significant digits, as stated in the output.
 DIGITS_RULE = (
@@ -88,8 +89,8 @@ def round_significant(value: float, digits: int) -> str:
     return str(d.quantize(quantum, rounding=ROUND_HALF_UP))
 
 
-@dataclass(frozen=True)
-class GravityEstimate:
+@dataclass(frozen=True, eq=False)
+class GravityEstimate(Result):
     """``g`` from measured ``l`` and ``T``, with its error bounds (problem 1).
 
     Attributes

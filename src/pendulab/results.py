@@ -1,0 +1,138 @@
+"""What every result object of pendulab offers, the way scipy, xarray and pandas do it.
+
+The results are frozen dataclasses that derive from :class:`Result`:
+
+- their arrays are read-only views (a result cannot be changed behind its back);
+- ``==`` is identity and ``hash()`` works (``eq=False``: arrays have no single truth value);
+- :meth:`Result.to_dict` gives the fields as a ``dict``;
+- :meth:`Result.to_frame` gives a pandas ``DataFrame`` (pandas is optional:
+  ``pip install 'pendulab[pandas]'``); :func:`to_frame` does the same for a sequence of
+  results, one row each (the rows of problems 3 and 5, a list of estimates);
+- in Jupyter a result shows itself as a table of its fields (``_repr_html_``).
+"""
+from __future__ import annotations
+
+import dataclasses
+import html
+import math
+from collections.abc import Iterable, Mapping
+from typing import Any
+
+import numpy as np
+
+__all__ = ["Result", "to_frame"]
+
+
+def _read_only(value: Any) -> Any:
+    """A read-only view of an array (the caller's own array keeps its flags)."""
+    if isinstance(value, np.ndarray) and value.flags.writeable:
+        view = value.view()
+        view.flags.writeable = False
+        return view
+    return value
+
+
+class Result:
+    """Base of the frozen result dataclasses: read-only arrays, ``to_dict``, ``to_frame``, a notebook view.
+
+    Subclasses are declared ``@dataclass(frozen=True, eq=False)``. A subclass whose rows
+    are natural (a trajectory: one row per time) defines ``_columns()``; otherwise
+    :meth:`to_frame` gives one row of the scalar fields.
+    """
+
+    __slots__ = ()
+
+    def __post_init__(self) -> None:
+        for f in dataclasses.fields(self):  # type: ignore[arg-type]
+            value = getattr(self, f.name)
+            if isinstance(value, np.ndarray):
+                new: Any = _read_only(value)
+            elif isinstance(value, dict) and any(isinstance(v, np.ndarray) for v in value.values()):
+                new = {k: _read_only(v) for k, v in value.items()}
+            else:
+                continue
+            object.__setattr__(self, f.name, new)
+
+    def to_dict(self) -> dict[str, Any]:
+        """The fields as a ``dict``; nested results become dicts too, arrays stay arrays."""
+        return {f.name: _plain(getattr(self, f.name)) for f in dataclasses.fields(self)}  # type: ignore[arg-type]
+
+    def to_frame(self) -> Any:
+        """A pandas ``DataFrame``: the result's table, or one row of its scalar fields."""
+        pd = _pandas()
+        columns = self._columns()
+        if columns is not None:
+            return pd.DataFrame(columns)
+        return pd.DataFrame([self._row()])
+
+    def _columns(self) -> Mapping[str, Any] | None:
+        return None
+
+    def _row(self) -> dict[str, Any]:
+        """The scalar fields (numbers, strings, pairs of numbers) of one table row."""
+        row: dict[str, Any] = {}
+        for f in dataclasses.fields(self):  # type: ignore[arg-type]
+            value = getattr(self, f.name)
+            if isinstance(value, (bool, int, float, str, np.number)) or value is None:
+                row[f.name] = value
+            elif isinstance(value, tuple) and 0 < len(value) <= 3 and all(
+                isinstance(v, (int, float, np.number)) for v in value
+            ):
+                for i, v in enumerate(value):
+                    row[f"{f.name}_{i}"] = v
+        return row
+
+    def _repr_html_(self) -> str:
+        rows = "".join(
+            f"<tr><th style='text-align:left'>{html.escape(f.name)}</th>"
+            f"<td style='text-align:left'>{_html(getattr(self, f.name))}</td></tr>"
+            for f in dataclasses.fields(self)  # type: ignore[arg-type]
+        )
+        return f"<table><caption>{type(self).__name__}</caption>{rows}</table>"
+
+
+def to_frame(results: Iterable[Result]) -> Any:
+    """A pandas ``DataFrame`` with one row per result (their scalar fields).
+
+    Examples
+    --------
+    >>> from pendulab.problems import problem5
+    >>> to_frame(problem5(ns=(10, 100)).rows).columns[:3].tolist()  # doctest: +SKIP
+    ['n', 'period', 'error']
+    """
+    pd = _pandas()
+    return pd.DataFrame([r._row() for r in results])
+
+
+def _pandas() -> Any:
+    from ._extras import require
+
+    return require("pandas", "to_frame()")
+
+
+def _plain(value: Any) -> Any:
+    if isinstance(value, Result):
+        return value.to_dict()
+    if isinstance(value, tuple) and value and all(isinstance(v, Result) for v in value):
+        return [v.to_dict() for v in value]
+    return value
+
+
+def _html(value: Any) -> str:
+    """A short, exact rendering of one field: floats in full (repr), arrays summarised."""
+    if isinstance(value, Result):
+        return f"<details><summary>{type(value).__name__}</summary>{value._repr_html_()}</details>"
+    if isinstance(value, tuple) and value and all(isinstance(v, Result) for v in value):
+        inner = "".join(v._repr_html_() for v in value)
+        return f"<details><summary>{len(value)} × {type(value[0]).__name__}</summary>{inner}</details>"
+    if isinstance(value, np.ndarray):
+        body = np.array2string(value, threshold=6, edgeitems=2, floatmode="unique", separator=", ")
+        return f"array {value.shape} {value.dtype}: <code>{html.escape(body)}</code>"
+    if isinstance(value, dict):
+        items = "".join(f"<li>{html.escape(str(k))}: {_html(v)}</li>" for k, v in value.items())
+        return f"<ul>{items}</ul>"
+    if isinstance(value, float) and math.isfinite(value):
+        return f"<code>{value!r}</code>"
+    if isinstance(value, (int, float, tuple, np.number)):
+        return f"<code>{html.escape(repr(value))}</code>"
+    return html.escape(str(value))

@@ -1,0 +1,114 @@
+"""The result objects' notebook conventions: identity equality, read-only arrays, dicts, frames, HTML."""
+import dataclasses
+import html
+import importlib
+import math
+import sys
+
+import numpy as np
+import pytest
+
+from pendulab.crossing import estimate_period
+from pendulab.errors import MissingExtraError
+from pendulab.interpolation import inverse_cubic
+from pendulab.motion import global_error
+from pendulab.problems import problem2, problem5
+from pendulab.results import Result, to_frame
+from pendulab.taylor import simulate
+
+
+@pytest.fixture(scope="module")
+def tr():
+    return simulate(1.0, math.pi / 4, 0.1, 2.1)
+
+
+def test_equality_is_identity_and_hash_works(tr):
+    twin = simulate(1.0, math.pi / 4, 0.1, 2.1)
+    assert np.array_equal(tr.theta, twin.theta)
+    assert (tr == twin) is False  # no "truth value of an array is ambiguous"
+    assert tr == tr
+    assert len({tr, twin, tr}) == 2
+
+
+def test_arrays_are_read_only(tr):
+    with pytest.raises(ValueError, match="read-only"):
+        tr.theta[0] = 1.0
+    with pytest.raises(dataclasses.FrozenInstanceError):
+        tr.theta = np.zeros(3)
+
+
+def test_the_callers_array_keeps_its_flags():
+    z2 = np.array([0.3, 0.1, -0.1, -0.3])
+    t = np.array([1.0, 1.1, 1.2, 1.3])
+    r = inverse_cubic(z2, t, (0.5, 0.9))
+    assert z2.flags.writeable and t.flags.writeable
+    assert not r.z2.flags.writeable
+    z2[0] = 7.0  # the caller may still change its own array
+
+
+def test_every_result_class_is_a_frozen_identity_dataclass():
+    for name in ("approximations", "group", "lsq", "newton", "problems", "quadrature", "uncertainty"):
+        importlib.import_module(f"pendulab.{name}")  # every result class is defined
+    classes = list(_subclasses(Result))
+    assert len(classes) >= 15
+    for cls in classes:
+        params = cls.__dataclass_params__
+        assert params.frozen and not params.eq, cls
+
+
+def _subclasses(cls):
+    for sub in cls.__subclasses__():
+        yield sub
+        yield from _subclasses(sub)
+
+
+def test_to_dict_and_to_frame_of_a_trajectory(tr):
+    d = tr.to_dict()
+    assert list(d) == [f.name for f in dataclasses.fields(tr)]
+    assert d["theta"] is tr.theta and d["method"] == "taylor2"
+    df = tr.to_frame()
+    assert list(df.columns) == ["t", "theta", "omega"]
+    assert len(df) == 22
+    # Figure 3 of the coursework: t = 2.1 -> z1 = 0.796774928412, z2 = -0.297068336875 (12 digits).
+    assert df["theta"].iloc[-1] == pytest.approx(0.796774928412, abs=5e-13)
+    assert df["omega"].iloc[-1] == pytest.approx(-0.297068336875, abs=5e-13)
+
+
+def test_nested_results_become_dicts_and_rows_become_a_frame():
+    est = estimate_period(1.0, math.pi / 4, 1e-3)
+    d = est.to_dict()
+    assert isinstance(d["interpolation"], dict)
+    assert d["interpolation"]["value"] == est.cubic
+    row = est.to_frame()
+    assert len(row) == 1
+    assert row["cubic"].iloc[0] == est.cubic
+    assert (row["bracket_0"].iloc[0], row["bracket_1"].iloc[0]) == est.bracket
+
+    p5 = problem5(ns=(10, 100))
+    table = to_frame(p5.rows)
+    assert table["n"].tolist() == [10, 100]
+    assert table["period"].tolist() == [r.period for r in p5.rows]
+
+
+def test_global_error_frame(tr):
+    ge = global_error(tr)
+    df = ge.to_frame()
+    assert list(df.columns) == ["t", "theta_error", "omega_error", "energy_drift"]
+    assert df["theta_error"].abs().max() == ge.max_theta_error
+
+
+def test_to_frame_without_pandas_names_the_extra(monkeypatch, tr):
+    monkeypatch.setitem(sys.modules, "pandas", None)
+    with pytest.raises(MissingExtraError, match=r"to_frame\(\) needs pandas, which is not installed: "
+                                                r"pip install 'pendulab\[pandas\]'"):
+        tr.to_frame()
+
+
+def test_html_shows_every_field_and_floats_in_full():
+    p2 = problem2()
+    page = p2._repr_html_()
+    for f in dataclasses.fields(p2):
+        assert f"<th style='text-align:left'>{f.name}</th>" in page
+    assert f"<code>{p2.alpha!r}</code>" in page  # the shortest repr: every digit of the double
+    assert html.escape(p2.justification) in page
+    assert "<details><summary>NewtonResult</summary>" in page
