@@ -102,3 +102,52 @@ def test_require_reraises_a_broken_install(monkeypatch):
     with pytest.raises(ModuleNotFoundError) as info:
         require("pyarrow.no_such_module", "x")
     assert not isinstance(info.value, MissingExtraError)
+
+
+# ---------------------------------------------------------------- the browser test's Chromium
+def _fake_executable(folder, name):
+    path = folder / name
+    path.write_text("#!/bin/sh\n")
+    path.chmod(0o755)
+    return str(path)
+
+
+def test_chromium_found_on_path_under_each_name(monkeypatch, tmp_path):
+    from _browser import NAMES, find_chromium
+
+    monkeypatch.delenv("PENDULAB_CHROMIUM", raising=False)
+    monkeypatch.setenv("PATH", str(tmp_path))
+    for name in reversed(NAMES):  # each name alone, then the first of the list wins
+        path = _fake_executable(tmp_path, name)
+        assert find_chromium() == path
+    assert find_chromium() == str(tmp_path / "chromium")
+
+
+def test_chromium_from_playwright_then_a_clear_message(monkeypatch, tmp_path):
+    from _browser import HOW_TO_GET_ONE, find_chromium
+
+    monkeypatch.delenv("PENDULAB_CHROMIUM", raising=False)
+    monkeypatch.setenv("PATH", str(tmp_path))  # nothing on PATH
+
+    class Playwright:
+        class chromium:
+            executable_path = str(tmp_path / "ms-playwright" / "chrome")
+
+    with pytest.raises(LookupError) as info:
+        find_chromium(Playwright)  # its download is not there either
+    assert str(info.value) == HOW_TO_GET_ONE
+    assert "apt-get install chromium" in HOW_TO_GET_ONE and "playwright install chromium" in HOW_TO_GET_ONE
+    (tmp_path / "ms-playwright").mkdir()
+    own = _fake_executable(tmp_path / "ms-playwright", "chrome")
+    assert find_chromium(Playwright) == own
+
+
+def test_chromium_named_by_the_environment(monkeypatch, tmp_path):
+    from _browser import find_chromium
+
+    chosen = _fake_executable(tmp_path, "my-chrome")
+    monkeypatch.setenv("PENDULAB_CHROMIUM", chosen)
+    assert find_chromium() == chosen
+    monkeypatch.setenv("PENDULAB_CHROMIUM", str(tmp_path / "missing"))
+    with pytest.raises(LookupError, match="PENDULAB_CHROMIUM = .*missing is not an executable file"):
+        find_chromium()

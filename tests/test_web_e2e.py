@@ -1,7 +1,7 @@
 """End to end: ``pendulab serve`` in a subprocess, the page in headless Chromium.
 
-Debian's ``chromium`` (``make test`` installs it) driven by Playwright; a Playwright
-browser download does not work here, so the test points at ``/usr/bin/chromium``.
+A Chromium driven by Playwright: the one ``_browser.find_chromium`` finds (``make test``
+installs Debian's ``chromium`` when there is none).
 Reference periods: mpmath's complete elliptic integral at 30 digits,
 ``T = 4 sqrt(l/g) K(sin^2(alpha/2))``, independent of the library's AGM loop.
 """
@@ -10,7 +10,6 @@ from __future__ import annotations
 import math
 import os
 import time
-from pathlib import Path
 from urllib.parse import parse_qs, urlparse
 
 import pytest
@@ -18,9 +17,9 @@ from playwright.sync_api import sync_playwright
 
 from pendulab import taylor
 from pendulab.web.child import serve_in_child
+from _browser import find_chromium
 from conftest import ellipk_period
 
-CHROMIUM = "/usr/bin/chromium"
 CHROMIUM_ARGS = [
     "--headless", "--no-sandbox", "--disable-gpu", "--disable-quic", "--no-first-run",
     "--disable-background-networking", "--disable-component-update", "--disable-sync",
@@ -36,9 +35,8 @@ def server():
 
 @pytest.fixture(scope="module")
 def browser():
-    assert Path(CHROMIUM).exists(), "Debian's chromium is needed: `make test` installs it (apt-get install chromium)"
     with sync_playwright() as p:
-        b = p.chromium.launch(executable_path=CHROMIUM, args=CHROMIUM_ARGS)
+        b = p.chromium.launch(executable_path=find_chromium(p), args=CHROMIUM_ARGS)
         yield b
         b.close()
 
