@@ -42,7 +42,7 @@ class NoReturnError(NumericalError):
 
 
 class LeftOscillationError(NumericalError):
-    """The discrete pendulum went over the top (|theta| > pi): no period to find."""
+    """The discrete pendulum went over the top (``|theta| > pi``): no period to find."""
 
 
 class MissingExtraError(ImportError):

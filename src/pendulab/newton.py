@@ -244,7 +244,7 @@ class Condition(Result):
 
 @dataclass(frozen=True, eq=False)
 class IntervalCheck(Result):
-    """The classical sufficient conditions for Newton's method on ``[a, b]`` ([2]_).
+    """The classical sufficient conditions for Newton's method on ``[a, b]`` (reference [2] of the module).
 
     When all hold, ``f`` has exactly one zero ``z`` in ``[a, b]`` and Newton's method
     converges to it from every ``x0`` in ``[a, b]``.

@@ -113,7 +113,7 @@ def _pandas() -> Any:
 def _plain(value: Any) -> Any:
     if isinstance(value, Result):
         return value.to_dict()
-    if isinstance(value, tuple) and value and all(isinstance(v, Result) for v in value):
+    if isinstance(value, (tuple, list)) and value and all(isinstance(v, Result) for v in value):
         return [v.to_dict() for v in value]
     return value
 
@@ -122,7 +122,7 @@ def _html(value: Any) -> str:
     """A short, exact rendering of one field: floats in full (repr), arrays summarised."""
     if isinstance(value, Result):
         return f"<details><summary>{type(value).__name__}</summary>{value._repr_html_()}</details>"
-    if isinstance(value, tuple) and value and all(isinstance(v, Result) for v in value):
+    if isinstance(value, (tuple, list)) and value and all(isinstance(v, Result) for v in value):
         inner = "".join(v._repr_html_() for v in value)
         return f"<details><summary>{len(value)} × {type(value[0]).__name__}</summary>{inner}</details>"
     if isinstance(value, np.ndarray):

@@ -105,7 +105,7 @@ class SweepResult:
         return {k: c[rows] for k, c in self.columns.items()}
 
     def summary(self) -> list[dict[str, Any]]:
-        """Per (method, step): pendulums found, largest |cubic error| and relative error."""
+        """Per (method, step): pendulums found, largest ``|cubic error|`` and relative error."""
         out = []
         keys = dict.fromkeys(zip(self.columns["method"].tolist(), self.columns["step"].tolist()))
         for method, step in keys:

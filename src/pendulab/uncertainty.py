@@ -2,7 +2,7 @@
 
 From the small-angle period ``T = 2 pi sqrt(l/g)`` (problem 1), ``g = 4 pi^2 l / T^2``.
 Measured values ``l~``, ``T~`` with absolute errors at most ``dl``, ``dT`` give, to first
-order (the general error-propagation formula, [1]_ chapter 1),
+order (the general error-propagation formula, [1]_ chapter 1)::
 
     |e_g| <= |dg/dl| dl + |dg/dT| dT = (4 pi^2 / T^2) dl + (8 pi^2 l / T^3) dT,
     |e_g| / |g| <= dl / l + 2 dT / T.

@@ -8,7 +8,7 @@ _FLOOR = 1e-17
 
 
 def approximation_errors(ax, table):
-    """|relative error| of each period formula against the amplitude (degrees), log scale.
+    """``|relative error|`` of each period formula against the amplitude (degrees), log scale.
 
     ``table`` is a :class:`pendulab.approximations.ApproximationErrors`. Returns the lines.
     """
@@ -31,7 +31,7 @@ def approximation_errors(ax, table):
 
 
 def sweep_errors(ax, result):
-    """|cubic period error| against the amplitude, one line per (method, step).
+    """``|cubic period error|`` against the amplitude, one line per (method, step).
 
     ``result`` is a :class:`pendulab.sweep.SweepResult`. Pendulums whose simulation did
     not return (status other than ``found``) are left out. Returns the lines.
@@ -51,7 +51,7 @@ def sweep_errors(ax, result):
 
 
 def global_error(ax, errors):
-    """|theta error| and |energy drift| of simulations against time, one pair per entry.
+    """``|theta error|`` and ``|energy drift|`` of simulations against time, one pair per entry.
 
     ``errors`` is a sequence of :class:`pendulab.motion.GlobalError`. Returns the lines.
     """
