@@ -13,6 +13,9 @@ References
 from __future__ import annotations
 
 import math
+import threading
+from contextlib import contextmanager
+from fractions import Fraction
 from typing import Any
 
 import numpy as np
@@ -142,50 +145,180 @@ def agm_iterations(amplitude: float) -> int:
     return _MAX_ITERATIONS  # pragma: no cover - unreachable for b0 > 0
 
 
-def period_mp(length: Any, amplitude: Any, g: Any = G_EXACT, dps: int = 50):
-    """The period as an ``mpmath.mpf`` computed at ``dps`` digits of working precision.
+def _exact_inputs(length: Any, amplitude: Any, g: Any) -> tuple[Exact, Exact, Exact]:
+    """The three inputs as exact numbers, range-checked on their exact values.
 
-    Inputs are taken exactly: a string is parsed as written (``"4pi/5"`` with the true
-    pi), a float is its exact binary value. Uses ``mpmath.agm``, which is independent of
-    this module's double-precision loop.
+    A string is parsed as written (``"4pi/5"`` with the true pi), a float is its exact
+    binary value. The amplitude must satisfy ``0 <= alpha < pi`` exactly: the check runs
+    on the rational coefficient (or a certified comparison with pi), never on a rounded
+    value, so ``"0.9999999999999999999999999pi"`` is accepted at any precision.
     """
-    import mpmath
-
+    from .errors import InputError
     from .exact import parse_angle, parse_number
 
     def exact(name, x, parser):
-        return parser(name, x) if isinstance(x, str) else Exact.of(x)
+        if isinstance(x, Exact):
+            return x
+        if isinstance(x, str):
+            return parser(name, x)
+        return Exact.of(v.finite(name, x))
 
     l_ = exact("length", length, parse_number)
     a_ = exact("amplitude", amplitude, parse_angle)
     g_ = exact("g", g, parse_number)
-    v.positive("length", float(l_))
-    v.positive("g", float(g_))
-    with mpmath.workdps(dps):
-        alpha = a_.mpf(dps)
-        if not (0 <= alpha < mpmath.pi):
-            v.amplitude("amplitude", a_.text or float(a_))
-        t0 = 2 * mpmath.pi * mpmath.sqrt(l_.mpf(dps) / g_.mpf(dps))
-        return t0 / mpmath.agm(1, mpmath.cos(alpha / 2))
+    for name, x in (("length", l_), ("g", g_)):
+        if not x.coef > 0:
+            raise InputError(name, x.text or float(x), "a finite number > 0")
+    if not (a_.coef >= 0 and _below_pi(a_)):
+        raise InputError("amplitude", a_.text or repr(float(a_)), "an angle in [0, pi) rad")
+    return l_, a_, g_
 
 
-def period_digits(length: Any, amplitude: Any, g: Any = G_EXACT, digits: int = 30) -> str:
-    """The period to ``digits`` significant digits, every one of them right.
+def _below_pi(x: Exact) -> bool:
+    """``x < pi`` decided exactly: on the coefficient for a multiple of pi, else by Arb
+    balls of growing precision (pi is irrational, so the comparison always resolves)."""
+    if x.pi_power == 1:
+        return x.coef < 1
+    if x.coef <= 3 or x.coef >= 4:
+        return x.coef <= 3
+    from flint import arb, fmpq
 
-    Ziv's strategy: evaluate at two working precisions with growing guard digits until
-    both round to the same ``digits``-digit decimal; that decimal is then correctly
-    rounded unless the true value lies within 1e-(digits+guard) of a rounding boundary.
+    prec = 64
+    with _arb_precision(prec) as ctx:
+        while True:
+            ctx.prec = prec
+            d = arb.pi() - arb(fmpq(x.coef.numerator, x.coef.denominator))
+            if d > 0 or d < 0:
+                return bool(d > 0)
+            prec *= 2
+
+
+_ARB_LOCK = threading.RLock()
+
+
+@contextmanager
+def _arb_precision(prec: int):
+    """Arb's working precision (bits) is one global setting: set it under a lock, restore it."""
+    from flint import ctx
+
+    with _ARB_LOCK:
+        old = ctx.prec
+        ctx.prec = prec
+        try:
+            yield ctx
+        finally:
+            ctx.prec = old
+
+
+def _arb_of(x: Exact):
+    from flint import arb, fmpq
+
+    value = arb(fmpq(x.coef.numerator, x.coef.denominator))
+    return value * arb.pi() ** x.pi_power if x.pi_power else value
+
+
+def period_ball(length: Any, amplitude: Any, g: Any = G_EXACT, prec: int = 128):
+    """The period as an Arb ball (``flint.arb``) that contains the true period of the inputs.
+
+    ``T = 2 pi sqrt(l/g) / M(1, cos(alpha/2))`` (8) in ball arithmetic ([3]_): every
+    operation returns an interval guaranteed to contain the exact result, so the ball
+    proves the digits it determines. ``cos(alpha/2)`` of ``alpha = c pi`` is computed as
+    ``sin(pi (1 - c)/2)`` from the exact rational ``1 - c``, so an amplitude within
+    ``1e-25`` of pi costs no extra precision.
+
+    Parameters
+    ----------
+    length, amplitude, g
+        As :func:`period_mp`: taken exactly.
+    prec : int
+        Working precision in bits.
+
+    References
+    ----------
+    .. [3] F. Johansson, "Arb: efficient arbitrary-precision midpoint-radius interval
+       arithmetic", IEEE Trans. Computers 66 (2017) 1281-1292.
+    """
+    from flint import arb, fmpq
+
+    l_, a_, g_ = _exact_inputs(length, amplitude, g)
+    prec = v.integer("prec", prec, 16, 1 << 26)
+    with _arb_precision(prec):
+        if a_.pi_power == 1:
+            c = (1 - a_.coef) / 2
+            b0 = arb.sin_pi_fmpq(fmpq(c.numerator, c.denominator))
+        else:
+            b0 = (_arb_of(a_) / 2).cos()
+        t0 = 2 * arb.pi() * (_arb_of(l_) / _arb_of(g_)).sqrt()
+        return t0 / arb(1).agm(b0)
+
+
+def period_mp(length: Any, amplitude: Any, g: Any = G_EXACT, dps: int = 50):
+    """The period as an ``mpmath.mpf`` computed at ``dps`` digits of working precision.
+
+    Inputs are taken exactly (see :func:`period_ball`) and range-checked exactly. Uses
+    ``mpmath.agm``, independent of this module's double-precision loop and of Arb: the
+    tests' cross-check of :func:`period_digits`.
     """
     import mpmath
 
-    digits = v.integer("digits", digits, 1, 100000)
-    guard = 15
+    l_, a_, g_ = _exact_inputs(length, amplitude, g)
+    with mpmath.workdps(dps):
+        if a_.pi_power == 1:
+            c = 1 - a_.coef
+            b0 = mpmath.sinpi(mpmath.mpf(c.numerator) / (2 * c.denominator))  # cos(c pi/2), 1 - c exact
+        else:
+            b0 = mpmath.cos(a_.mpf(dps) / 2)
+        t0 = 2 * mpmath.pi * mpmath.sqrt(l_.mpf(dps) / g_.mpf(dps))
+        return t0 / mpmath.agm(1, b0)
+
+
+def _round_significant(x: Fraction, digits: int) -> tuple[int, int]:
+    """``x > 0`` rounded to ``digits`` significant decimal digits (half even), exactly:
+    ``(n, e)`` with ``10^(digits-1) <= n < 10^digits`` and the value ``n 10^e``."""
+    e = (x.numerator.bit_length() - x.denominator.bit_length()) * 30103 // 100000 - digits
     while True:
-        lo = mpmath.nstr(period_mp(length, amplitude, g, digits + guard), digits, strip_zeros=False)
-        hi = mpmath.nstr(period_mp(length, amplitude, g, digits + 2 * guard), digits, strip_zeros=False)
-        if lo == hi:
-            return hi
-        guard *= 2
+        n = round(x / Fraction(10) ** e)  # Fraction rounding is exact, half to even
+        if n >= 10**digits:
+            e += 1
+        elif n < 10 ** (digits - 1):
+            e -= 1
+        else:
+            return n, e
+
+
+def _arb_fraction(x) -> Fraction:
+    """The exact value of an exact ``arb`` (a ball's midpoint or radius), as a fraction."""
+    man, exp = (int(p) for p in x.man_exp())
+    return Fraction(man) * Fraction(2) ** exp
+
+
+def period_digits(length: Any, amplitude: Any, g: Any = G_EXACT, digits: int = 30) -> str:
+    """The period to ``digits`` significant digits, correctly rounded, proved by ball arithmetic.
+
+    The period of the inputs as written is enclosed in an Arb ball (:func:`period_ball`);
+    when both ends of the ball round to the same ``digits``-digit decimal, every real
+    number in it, the true period included, rounds to that decimal: it is the correctly
+    rounded period, and every digit printed is proved. Otherwise the precision is doubled.
+    """
+    import mpmath
+
+    from .errors import NumericalError
+
+    digits = v.integer("digits", digits, 1, 100000)
+    _exact_inputs(length, amplitude, g)
+    prec = int(digits * 3.33) + 64
+    while prec <= 1 << 24:
+        ball = period_ball(length, amplitude, g, prec)
+        if ball.is_finite() and ball > 0:
+            mid, rad = _arb_fraction(ball.mid()), _arb_fraction(ball.rad())  # both exact
+            lo = _round_significant(mid - rad, digits)
+            hi = _round_significant(mid + rad, digits)
+            if lo == hi:
+                n, e = lo
+                with mpmath.workdps(digits + 10):  # only formats the proved decimal
+                    return mpmath.nstr(mpmath.mpf(n) * mpmath.mpf(10) ** e, digits, strip_zeros=False)
+        prec *= 2
+    raise NumericalError(f"the period could not be enclosed to {digits} digits within 2^24 bits")
 
 
 def fixed_iterations_error(amplitude: Any, iterations: int = 7, dps: int = 60):
@@ -206,12 +339,17 @@ def fixed_iterations_error(amplitude: Any, iterations: int = 7, dps: int = 60):
 
 
 def fixed_iterations_limit(iterations: int = 7, rtol: float = 2.0**-53) -> float:
-    """The largest amplitude at which ``iterations`` steps of (7) are exact in double precision.
+    """The largest amplitude at which the truncation error of ``iterations`` steps of (7) is at most ``rtol``.
 
-    Returns the amplitude (rad) below which the truncation error of (8) after
-    ``iterations`` steps is at most ``rtol`` (default: half an ulp, 1.1e-16); above it the
-    fixed count ``T^`` is no longer the correctly rounded period. Found by bisection on
+    Returns the amplitude (rad) below which the relative truncation error of (8) after
+    ``iterations`` steps, computed exactly in mpmath (:func:`fixed_iterations_error`), is
+    at most ``rtol`` (default: half an ulp, 1.1e-16). Found by bisection on
     ``log(pi - alpha)``; the truncation error grows monotonically with ``alpha``.
+
+    This bounds the truncation alone. It does not make the double-precision ``T^`` the
+    same double as the converged AGM: both loops round, and a truncation error ``d``
+    below half an ulp still moves the result across a rounding boundary for a fraction of
+    about ``d/ulp`` of the amplitudes (measured by ``benchmarks/accuracy_claims.py``).
     """
     import mpmath
 

@@ -34,14 +34,15 @@ def _method_option(f):
 @click.option("--iterations", type=click.IntRange(0, 1000), default=None,
               help="Fixed AGM iterations (7: the coursework's T^ of (8)); default: to convergence.")
 @click.option("--digits", type=click.IntRange(1, 10000), default=None,
-              help="Print the periods to this many significant digits, all correct (mpmath); default 15.")
+              help="Print the periods to this many significant digits, each proved by ball arithmetic (Arb); default 15.")
 @g_option
 @json_option
 def period(length, amplitude, iterations, digits, g, as_json):
     """The exact period by the arithmetic-geometric mean, equations (7)-(8).
 
-    The digits printed are those of the true period of the inputs as written (mpmath,
-    Ziv's rounding test); --json gives the double-precision AGM of (8) as well.
+    The digits printed are those of the true period of the inputs as written, correctly
+    rounded and proved by ball arithmetic (Arb); --json gives the double-precision AGM of
+    (8) as well.
     """
     from ..exact import Exact
     from ..period import agm_period, period_digits, small_angle_period

@@ -1,0 +1,124 @@
+"""Certified digits: Arb balls from the exact inputs, checked against mpmath's elliptic K.
+
+The references use ``4 sqrt(l/g) K(k)`` (DLMF 19.2.8) with ``mpmath.ellipk`` at a
+working precision well above the digits compared, started from the exact inputs
+(``k' = cos(alpha/2)`` from the exact distance to pi where the amplitude is a multiple of
+pi): independent of Arb and of the AGM.
+"""
+import math
+import random
+from fractions import Fraction
+
+import mpmath
+import pytest
+from flint import arb, ctx
+
+from conftest import assert_one_line_error
+from pendulab.errors import InputError
+from pendulab.period import period_ball, period_digits, period_mp
+
+
+def ref_period(length: str, alpha_coef: Fraction, pi_multiple: bool, g: str = "9.80665", dps: int = 120):
+    """``4 sqrt(l/g) K(k)`` with ``1 - m = cos^2(alpha/2)`` (mpmath.ellipk takes m)."""
+    with mpmath.workdps(dps):
+        c = mpmath.mpf(alpha_coef.numerator) / alpha_coef.denominator
+        if pi_multiple:
+            kp = mpmath.sin(mpmath.pi * (1 - c) / 2)  # cos(c pi/2), exactly what was written
+        else:
+            kp = mpmath.cos(c / 2)
+        m = 1 - kp * kp
+        return 4 * mpmath.sqrt(mpmath.mpf(length) / mpmath.mpf(g)) * mpmath.ellipk(m)
+
+
+@pytest.mark.parametrize(
+    "amplitude, coef, pi_multiple",
+    [
+        ("4pi/5", Fraction(4, 5), True),
+        ("0.9999999999999999999999999pi", Fraction("0.9999999999999999999999999"), True),
+        ("0.999999999999999999999999999999999999999999pi", Fraction("0.999999999999999999999999999999999999999999"), True),
+        # the double nearest pi, 1.2e-16 below it: within 1e-15 of pi
+        ("3.141592653589793", Fraction("3.141592653589793"), False),
+        ("3.1415926535897932384626433832795028841971", Fraction("3.1415926535897932384626433832795028841971"), False),
+        ("1e-160", Fraction("1e-160"), False),
+        ("1e-300", Fraction("1e-300"), False),
+        ("0", Fraction(0), False),
+    ],
+)
+@pytest.mark.parametrize("digits", [1, 5, 15, 40])
+def test_digits_are_the_correctly_rounded_period(amplitude, coef, pi_multiple, digits):
+    ref = ref_period("1", coef, pi_multiple, dps=digits + 150)
+    with mpmath.workdps(digits + 150):
+        expected = mpmath.nstr(ref, digits, strip_zeros=False)
+    assert period_digits("1", amplitude, digits=digits) == expected
+
+
+def test_range_check_runs_on_the_exact_amplitude():
+    # Issue: refused at 5 digits because the amplitude was rounded to 20 digits first.
+    assert period_digits("1", "0.9999999999999999999999999pi", digits=5) == "74.722"
+    assert period_digits("1", "0.9999999999999999999999999pi", digits=15) == "74.7223655536862"
+    # pi = 3.14159265358979323846264338327950288419716939937510582...: one digit past pi is refused,
+    # the same digits rounded down are accepted, whatever the precision.
+    with pytest.raises(InputError, match="amplitude"):
+        period_digits("1", "3.14159265358979323846264338327950288419716939937511", digits=3)
+    below = "3.1415926535897932384626433832795028841971693993751"
+    with mpmath.workdps(200):
+        expected = mpmath.nstr(ref_period("1", Fraction(below), False, dps=200), 3, strip_zeros=False)
+    assert period_digits("1", below, digits=3) == expected
+    for bad in ("pi", "1pi", "180deg", "-1e-300", "4"):
+        with pytest.raises(InputError, match="amplitude"):
+            period_digits("1", bad, digits=5)
+    with pytest.raises(InputError, match="length"):
+        period_digits("0", "1", digits=5)
+    with pytest.raises(InputError, match="g"):
+        period_digits("1", "1", g="-1e-300", digits=5)
+
+
+def test_period_mp_takes_the_exact_amplitude_too():
+    ref = ref_period("1", Fraction("0.9999999999999999999999999"), True, dps=80)
+    got = period_mp("1", "0.9999999999999999999999999pi", dps=20)
+    assert abs(got - ref) < 1e-17 * ref
+
+
+def test_ball_contains_the_reference_and_shrinks_with_precision():
+    rng = random.Random(12)
+    for _ in range(25):
+        coef = Fraction(rng.randrange(1, 10**12), 10**12)  # alpha = coef pi
+        length = str(Fraction(rng.randrange(1, 10**6), 1000))
+        ref = ref_period(length, coef, True, dps=80)
+        for prec in (64, 200):
+            ball = period_ball(length, f"{coef.numerator}pi/{coef.denominator}", prec=prec)
+            old = ctx.prec
+            ctx.prec = 300
+            try:
+                assert ball.contains(arb(mpmath.nstr(ref, 75)))  # ref known to 1e-75
+            finally:
+                ctx.prec = old
+            assert float(ball.rad()) < 2.0 ** (-prec + 12) * float(ball.mid())
+
+
+def test_random_inputs_match_mpmath():
+    rng = random.Random(5)
+    for _ in range(20):
+        coef = Fraction(rng.randrange(0, 10**9), 10**9 + 7)
+        amp = f"{coef.numerator}/{coef.denominator}"  # radians, a plain rational
+        length = f"{rng.randrange(1, 10**5)}e-3"
+        digits = rng.choice([3, 17, 30])
+        ref = ref_period(length, coef, False, dps=digits + 60)
+        with mpmath.workdps(digits + 60):
+            assert period_digits(length, amp, digits=digits) == mpmath.nstr(ref, digits, strip_zeros=False)
+
+
+def test_many_digits_agree_with_mpmath():
+    got = period_digits("3.5", "4pi/5", digits=3000)
+    ref = ref_period("3.5", Fraction(4, 5), True, dps=3100)
+    with mpmath.workdps(3100):
+        assert got == mpmath.nstr(ref, 3000, strip_zeros=False)
+
+
+def test_cli_period_digits_near_pi(cli):
+    res = cli("period", "-l", "1", "-a", "0.99999999999999pi", "--digits", "30")
+    assert res.code == 0, res.err
+    ref = ref_period("1", Fraction("0.99999999999999"), True, dps=80)
+    with mpmath.workdps(80):
+        assert f"T  = {mpmath.nstr(ref, 30, strip_zeros=False)} s" in res.out
+    assert_one_line_error(cli("period", "-l", "1", "-a", "1pi", "--digits", "5"), "amplitude")
