@@ -161,3 +161,84 @@ def test_convergence_plot_draws_the_table():
         assert list(lines[0].get_ydata()) == [row.error for row in r.rows]
     finally:
         plt.close(fig)
+
+
+# ------------------------------------------------------------------ the edges: tiny amplitudes, near pi
+def s_n_sin_form_mp(alpha: float, n: int, length: float = 1.0, dps: int = 50):
+    """S_n of rule (11) on [0, alpha] with the integrand 1/sqrt(2 sin((a+t)/2) sin((a-t)/2)),
+    in mpmath (unbounded exponent range: no underflow at alpha = 1e-300), nodes exact."""
+    with mpmath.workdps(dps):
+        a = mpmath.mpf(alpha)
+        f = lambda th: 1 / mpmath.sqrt(2 * mpmath.sin((a + th) / 2) * mpmath.sin((a - th) / 2))  # noqa: E731
+        h = a / n
+        r = mpmath.sqrt(mpmath.mpf(3) / 5)
+        total = 0
+        for i in range(n):
+            m, mu = (i + mpmath.mpf(1) / 2) * h, h / 2
+            total += mu / 9 * (5 * f(m - r * mu) + 8 * f(m) + 5 * f(m + r * mu))
+        return 4 * mpmath.sqrt(mpmath.mpf(length) / (2 * mpmath.mpf("9.80665"))) * total
+
+
+@pytest.mark.parametrize("alpha", [1e-160, 1e-200, 1e-300, 5e-324, 1e-3, ALPHA, math.pi - 1e-12])
+@pytest.mark.parametrize("n", [1, 10, 100])
+def test_singular_sum_at_every_amplitude_against_mpmath(alpha, n):
+    # Was inf at 1e-200 and 1.93320 (for 1.93527) at 1e-160: 2 sin sin underflowed.
+    assert quadrature_period(1.0, alpha, n) == pytest.approx(float(s_n_sin_form_mp(alpha, n)), rel=4e-15)
+
+
+def test_singular_sum_nodes_keep_their_distance_to_alpha():
+    # With 10^4 panels the last node lies alpha/(9 10^4) from the singularity; its rounding
+    # used to cost 2e-13 (measured); the reflected variable keeps S_n to rounding.
+    assert quadrature_period(L, ALPHA, 10**4) == pytest.approx(float(s_n_mp(10**4, dps=25)), rel=2e-15)
+
+
+def test_substituted_integrand_keeps_k_prime_near_pi():
+    for gap in (1e-9, 1e-12, 1e-15):
+        alpha = math.pi - gap
+        with mpmath.workdps(40):
+            kp = mpmath.cos(mpmath.mpf(alpha) / 2)  # k' of the double alpha, exactly
+            k = mpmath.sin(mpmath.mpf(alpha) / 2)
+            at_peak = mpmath.sqrt(2) / kp
+            at_half = mpmath.sqrt(2) / mpmath.sqrt(1 - k**2 * mpmath.sin(mpmath.mpf(0.5)) ** 2)
+        f = substituted_integrand(alpha)
+        g = substituted_integrand(alpha, reflected=True)
+        assert g(np.array(0.0)) == pytest.approx(float(at_peak), rel=2e-16)
+        assert f(np.array(0.5)) == pytest.approx(float(at_half), rel=4e-16)
+
+
+@pytest.mark.parametrize("gap", [1e-1, 1e-6, 1e-9, 1e-12, 1e-15, 3.2e-16])
+def test_graded_panels_reach_rounding_level_up_to_pi(gap):
+    from conftest import reference_period
+
+    alpha = math.pi - gap  # 3.2e-16: the double rounds to pi - 3.2e-16 (k' = 1.6e-16)
+    ref = float(reference_period(1.0, alpha))
+    assert quadrature_period(1.0, alpha, 3000, substitution=True, graded=True) == pytest.approx(ref, rel=4e-15)
+
+
+def test_equal_panels_converge_once_they_resolve_the_peak():
+    from conftest import reference_period
+
+    # The issue's case: k rounds to 1 at pi - 1e-9; the k' form gives the true 29.126 with grading
+    # and the equal panels move towards it instead of settling on 26.168.
+    alpha = math.pi - 1e-3  # k' = 5e-4: n = 5/k' = 1e4 panels give 1e-12
+    ref = float(reference_period(1.0, alpha))
+    errs = [abs(quadrature_period(1.0, alpha, n, substitution=True) / ref - 1) for n in (10**3, 10**4)]
+    assert errs[0] > 1e-5 and errs[1] < 1e-11
+    near = math.pi - 1e-9
+    assert quadrature_period(1.0, near, 1000, substitution=True, graded=True) == pytest.approx(
+        float(reference_period(1.0, near)), rel=1e-12)
+
+
+def test_composite_graded_on_a_peak_of_known_integral():
+    from pendulab.quadrature import composite_graded
+
+    for eps in (1e-3, 1e-9, 1e-15):
+        f = lambda x, e=eps: 1 / np.sqrt(e * e + x * x)  # noqa: E731
+        exact = math.asinh(1 / eps)  # int_0^1 dx / sqrt(eps^2 + x^2)
+        assert composite_graded(GAUSS3, f, 1.0, eps / 32, 3000) == pytest.approx(exact, rel=4e-15)
+    assert composite_graded(GAUSS3, np.exp, 1.0, 1e-3, 1000) == pytest.approx(math.expm1(1.0), rel=4e-16)
+
+
+def test_graded_needs_the_substitution():
+    with pytest.raises(InputError, match="graded"):
+        quadrature_period(L, ALPHA, 10, graded=True)
