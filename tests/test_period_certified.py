@@ -5,7 +5,6 @@ working precision well above the digits compared, started from the exact inputs
 (``k' = cos(alpha/2)`` from the exact distance to pi where the amplitude is a multiple of
 pi): independent of Arb and of the AGM.
 """
-import math
 import random
 from fractions import Fraction
 
@@ -22,10 +21,8 @@ def ref_period(length: str, alpha_coef: Fraction, pi_multiple: bool, g: str = "9
     """``4 sqrt(l/g) K(k)`` with ``1 - m = cos^2(alpha/2)`` (mpmath.ellipk takes m)."""
     with mpmath.workdps(dps):
         c = mpmath.mpf(alpha_coef.numerator) / alpha_coef.denominator
-        if pi_multiple:
-            kp = mpmath.sin(mpmath.pi * (1 - c) / 2)  # cos(c pi/2), exactly what was written
-        else:
-            kp = mpmath.cos(c / 2)
+        # cos(c pi/2) from the exact 1 - c, for a multiple of pi
+        kp = mpmath.sin(mpmath.pi * (1 - c) / 2) if pi_multiple else mpmath.cos(c / 2)
         m = 1 - kp * kp
         return 4 * mpmath.sqrt(mpmath.mpf(length) / mpmath.mpf(g)) * mpmath.ellipk(m)
 
