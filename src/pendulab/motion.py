@@ -10,16 +10,18 @@ For ``theta'' = -(g/l) sin(theta)`` (2) from ``theta(0) = alpha``, ``theta'(0) =
 (differentiate ``sin(theta/2) = k sn(u)``: ``cos(theta/2) theta'/2 = -omega0 k cn(u) dn(u)``
 and ``cos(theta/2) = sqrt(1 - k^2 sn^2) = dn``).
 
-Accuracy near ``alpha = pi``: ``scipy.special.ellipj(u, m)`` takes the parameter
-``m = k^2``, which rounds towards 1 and loses the complementary modulus
-``k' = cos(alpha/2)`` that the motion near the top depends on: measured against mpmath
-(``tests/test_motion.py``), ``theta`` is off by about 1e-13 rad at ``alpha = 3.14`` and
-4e-9 rad at ``alpha = pi - 1e-8``. Where ``k' < KP_SCIPY`` this module therefore runs
-the same algorithm as scipy (the AGM scheme of Abramowitz-Stegun 16.4) started from
-``(a0, b0, c0) = (1, k', k)`` computed directly from ``alpha``, and takes ``dn`` from
-``dn^2 = k'^2 + k^2 cn^2``, which keeps its absolute accuracy where ``dn`` is tiny. The
-arcsine is evaluated as ``atan2(k sn, dn)``, which stays well conditioned at the turning
-points where ``k sn -> 1``.
+Accuracy: ``scipy.special.ellipj(u, m)`` takes the parameter ``m = k^2``, which rounds
+towards 1 and loses the complementary modulus ``k' = cos(alpha/2)`` that the motion near
+the top depends on: measured against mpmath (``tests/test_motion.py``), ``theta`` is off
+by about 1e-13 rad at ``alpha = 3.14`` and 4e-9 rad at ``alpha = pi - 1e-8``; even far
+from pi its ``theta`` errs by up to 4 ulps of ``omega0 t + K`` (7.7e-15 rad at
+``alpha = 1``). This module therefore runs the same algorithm as scipy (the AGM scheme
+of Abramowitz-Stegun 16.4) for every amplitude, started from ``(a0, b0, c0) = (1, k', k)``
+computed directly from ``alpha``, and takes ``dn`` from ``dn^2 = k'^2 + k^2 cn^2``, which
+keeps its absolute accuracy where ``dn`` is tiny: about 1 ulp of ``omega0 t + K``
+(:func:`exact_motion_error_bound`), at the same speed. The arcsine is evaluated as
+``atan2(k sn, dn)``, which stays well conditioned at the turning points where
+``k sn -> 1``.
 
 References
 ----------
@@ -41,9 +43,6 @@ from . import _validate as v
 from .cases import G
 from .results import Result
 
-#: Below this complementary modulus ``k' = cos(alpha/2)`` (``alpha`` above about 2.94 rad)
-#: scipy's ``ellipj`` loses more than a few ulps; the AGM from ``k'`` takes over.
-KP_SCIPY = 0.1
 # AGM stopping rule: c_n <= eps a_n (the next phi correction is below rounding).
 _EPS = np.finfo(float).eps
 
@@ -79,16 +78,11 @@ def _jacobi_agm(u: np.ndarray, k: float, kp: float) -> tuple[np.ndarray, np.ndar
 def jacobi(u: Any, amplitude: float) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     """``sn(u|m), cn(u|m), dn(u|m)`` for ``m = sin^2(alpha/2)``, accurate up to ``alpha -> pi``.
 
-    scipy's ``ellipj`` where ``k' = cos(alpha/2) >= KP_SCIPY``, else :func:`_jacobi_agm`.
+    :func:`_jacobi_agm` from ``k = sin(alpha/2)`` and ``k' = cos(alpha/2)`` (module docstring).
     """
     alpha = v.amplitude("amplitude", amplitude)
     k, kp = math.sin(0.5 * alpha), math.cos(0.5 * alpha)
     u = np.asarray(u, dtype=float)
-    if kp >= KP_SCIPY:
-        from scipy.special import ellipj
-
-        sn, cn, dn, _ = ellipj(u, k * k)
-        return sn, cn, dn
     return _jacobi_agm(u, k, kp)
 
 
@@ -137,6 +131,12 @@ def exact_motion(length: Any, amplitude: Any, t: Any, g: Any = G) -> ExactMotion
     ExactMotion
         ``theta = 2 atan2(k sn(u), dn(u))``, ``theta' = -2 k omega0 cn(u)``,
         ``u = K - omega0 t`` with ``omega0 t`` reduced modulo the period ``4K``.
+
+    Notes
+    -----
+    Accurate to ``4 eps (omega0 |t| + K)`` rad (:func:`exact_motion_error_bound`): the
+    rounding of ``omega0 t`` sets the error, which grows linearly with ``t`` (4e-11 rad
+    at 1000 periods of a pendulum released at ``pi - 1e-12``).
     """
     length = v.positive("length", length)
     alpha = v.amplitude("amplitude", amplitude)
@@ -152,6 +152,35 @@ def exact_motion(length: Any, amplitude: Any, t: Any, g: Any = G) -> ExactMotion
     theta = 2 * np.arctan2(k * sn, dn)
     omega = -2 * k * w0 * cn
     return ExactMotion(t, theta, omega, length, alpha, g)
+
+
+#: The constant of :func:`exact_motion_error_bound`: measured errors reach 2.2 (theta) and
+#: 1.2 (theta'), over 2.5 periods and at 1000 periods, ``alpha`` up to ``pi - 1e-12``.
+ERROR_BOUND_FACTOR = 4.0
+
+
+def exact_motion_error_bound(length: Any, amplitude: Any, t: Any, g: Any = G) -> tuple[np.ndarray, np.ndarray]:
+    """The error bound of :func:`exact_motion` at the times ``t``: ``(theta bound, theta' bound)``.
+
+    ``|theta~(t) - theta(t)| <= 4 eps (omega0 |t| + K(k))`` rad and
+    ``|theta'~(t) - theta'(t)| <= 4 eps omega0 (omega0 |t| + K(k))`` rad/s, ``eps = 2^-52``.
+
+    Why this form: the argument ``u = K - omega0 t`` carries the rounding of ``omega0 t``
+    (``omega0 = sqrt(g/l)`` and the product, about ``eps omega0 |t|``) and of ``K`` and of
+    the reduction modulo ``4K`` (about ``eps K`` per period, the same order), and
+    ``|d theta/du| = 2k |cn| <= 2``, ``|d theta'/du| <= 2 k omega0``: so the error grows
+    linearly with ``t``, and the Jacobi functions add a few ulps. The factor 4 is
+    measured, not proved: against ``mpmath.ellipfun`` at 60 digits the largest ratio of
+    error to ``eps (omega0 |t| + K)`` is 2.2 for theta and 1.2 for theta', densely over 2.5
+    periods and around ``t = 1000 T``, for amplitudes from 1e-3 to ``pi - 1e-12``
+    (``tests/test_motion.py``, ``benchmarks/accuracy_claims.py``).
+    """
+    length = v.positive("length", length)
+    alpha = v.amplitude("amplitude", amplitude)
+    g = v.positive("g", g)
+    w0 = math.sqrt(g / length)
+    scale = ERROR_BOUND_FACTOR * _EPS * (w0 * np.abs(np.asarray(t, dtype=float)) + quarter_period(alpha))
+    return scale, w0 * scale
 
 
 def energy(theta: Any, omega: Any, length: Any, g: Any = G) -> np.ndarray:
