@@ -37,3 +37,56 @@ def test_inverse_cubic_estimates_its_own_error():
 def test_repeated_nodes_are_rejected():
     with pytest.raises(ValueError):
         divided_differences([0.0, 0.0, 1.0], [1.0, 2.0, 3.0])
+
+
+# ------------------------------------------------------------------ scaling and the rounding level
+from fractions import Fraction  # noqa: E402
+import math  # noqa: E402
+
+
+def exact_error_estimate(z2, t):
+    """``t[z2_0..z2_4] prod_(j<4)(0 - z2_j)`` in exact rationals (the doubles' exact values)."""
+    x = [Fraction(float(v)) for v in z2]
+    y = [Fraction(v) if isinstance(v, Fraction) else Fraction(float(v)) for v in t]
+    dd = 0
+    for k in range(5):
+        den = Fraction(1)
+        for i in range(5):
+            if i != k:
+                den *= x[k] - x[i]
+        dd += y[k] / den
+    return dd * math.prod(-xi for xi in x[:4])
+
+
+def test_scaled_nodes_give_the_same_bits():
+    z = np.array([0.35, 0.12, -0.08, -0.31])
+    t = np.arcsin(z) + 5.0
+    ref = inverse_cubic(z, t, (0.5, math.asin(0.5) + 5.0))
+    assert np.array_equal(ref.coefficients, divided_differences(z, t))  # reported unscaled
+    for e in (-600, -1000, 300):
+        r = inverse_cubic(np.ldexp(z, e), t, (math.ldexp(0.5, e), math.asin(0.5) + 5.0))
+        assert r.value == ref.value and r.error_estimate == ref.error_estimate
+        assert r.rounding_level == ref.rounding_level
+    tiny = inverse_cubic(np.ldexp(z, -1000), t, (math.ldexp(0.5, -1000), math.asin(0.5) + 5.0))
+    assert np.isinf(tiny.fourth_difference)  # the true t[z0..z4] ~ 2^4000 exceeds the doubles
+
+
+def test_error_estimate_below_rounding_level_is_flagged():
+    from pendulab.crossing import estimate_period
+
+    # The README's h = 1e-4 row: the estimate 4.4e-17 comes from rounding t_k = k h.
+    est = estimate_period(2.0800838231, 4 * math.pi / 5, 1e-4)
+    ip = est.interpolation
+    h = Fraction(est.step)
+    exact_t = [(est.j - 2 + k) * h for k in range(5)]  # t_k = k h with no rounding
+    # inverse_cubic's nodes: window points 1..4 (the cubic), then point 0 (the fifth).
+    exact = exact_error_estimate([*ip.z2, ip.fifth[0]], [*exact_t[1:], exact_t[0]])
+    assert abs(exact) < 1e-19  # the interpolation error proper (-6.7e-21)
+    assert abs(ip.error_estimate) <= ip.rounding_level and not ip.error_estimate_resolved
+    assert abs(ip.error_estimate - float(exact)) <= ip.rounding_level
+    # At h = 1e-2 the estimate is interpolation error, far above the rounding level.
+    est = estimate_period(2.0800838231, 4 * math.pi / 5, 1e-2)
+    ip = est.interpolation
+    exact_t = [(est.j - 2 + k) * Fraction(est.step) for k in range(5)]
+    exact = exact_error_estimate([*ip.z2, ip.fifth[0]], [*exact_t[1:], exact_t[0]])
+    assert ip.error_estimate_resolved and ip.error_estimate == pytest.approx(float(exact), rel=1e-6)

@@ -10,6 +10,7 @@ References
 """
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass
 
 import numpy as np
@@ -48,7 +49,9 @@ class InverseInterpolation(Result):
     z2, t : ndarray, shape (4,)
         The table of problem 3(d): ``z2`` changes sign among the nodes.
     coefficients : ndarray, shape (4,)
-        Newton's divided differences ``t[z2_0], ..., t[z2_0..z2_3]``.
+        Newton's divided differences ``t[z2_0], ..., t[z2_0..z2_3]`` (``inf`` where they
+        exceed the doubles, as for amplitudes below about 1e-100; ``value`` and
+        ``error_estimate`` are computed on scaled nodes and stay finite).
     value : float
         ``p(0)``, the estimate of the time at which ``theta' = 0``.
     fifth : tuple of float
@@ -58,6 +61,11 @@ class InverseInterpolation(Result):
     error_estimate : float
         ``t[z2_0..z2_4] * prod_j (0 - z2_j)``: the interpolation error formula with the
         unknown derivative replaced by the 5-node divided difference.
+    rounding_level : float
+        How far rounding the five times ``t_k`` to doubles (half an ulp each) can move
+        ``error_estimate``: ``sum_k ulp(t_k)/2 |prod_j z2_j| / |prod_(i != k) (z2_k - z2_i)|``.
+        An estimate at or below it is rounding noise, not interpolation error
+        (:attr:`error_estimate_resolved`).
     """
 
     z2: np.ndarray
@@ -67,6 +75,12 @@ class InverseInterpolation(Result):
     fifth: tuple[float, float]
     fourth_difference: float
     error_estimate: float
+    rounding_level: float = 0.0
+
+    @property
+    def error_estimate_resolved(self) -> bool:
+        """Whether the error estimate stands above the rounding of the times ``t_k``."""
+        return abs(self.error_estimate) > self.rounding_level
 
 
 def inverse_cubic(z2: np.ndarray, t: np.ndarray, fifth: tuple[float, float]) -> InverseInterpolation:
@@ -79,12 +93,34 @@ def inverse_cubic(z2: np.ndarray, t: np.ndarray, fifth: tuple[float, float]) -> 
     fifth : (float, float)
         A fifth point ``(z2, t)`` of the same simulation, for the error estimate:
         ``e(0) = f^(4)(xi)/4! * prod(0 - z2_j) ~ f[z2_0, .., z2_4] * prod(0 - z2_j)``.
+
+    Notes
+    -----
+    The nodes are scaled by the power of two ``s`` nearest above ``max |z2|``: the
+    divided differences of ``(z2/s, t)`` are those of ``(z2, t)`` times ``s^k``, exactly
+    (a power of two), and ``p(0)`` and the error estimate are unchanged bit for bit. Unscaled,
+    ``t[z2_0..z2_4] ~ h/z2^4`` overflows once ``z2 ~ alpha`` is below about 1e-77
+    (``p(0)`` became ``-inf`` at ``alpha = 1e-160``).
     """
     z2 = np.asarray(z2, dtype=float)
     t = np.asarray(t, dtype=float)
-    coef = divided_differences(z2, t)
-    value = float(newton_eval(coef, z2, 0.0))
-    five = divided_differences(np.append(z2, fifth[0]), np.append(t, fifth[1]))
-    fourth = float(five[-1])
-    error = fourth * float(np.prod(0.0 - z2))
-    return InverseInterpolation(z2, t, coef, value, (float(fifth[0]), float(fifth[1])), fourth, error)
+    x5 = np.append(z2, fifth[0])
+    t5 = np.append(t, fifth[1])
+    big = float(np.max(np.abs(x5)))
+    if not (math.isfinite(big) and big > 0):
+        raise ValueError(f"interpolation nodes must be finite and not all zero, got {x5.tolist()}")
+    e = math.frexp(big)[1]
+    x5 = np.ldexp(x5, -e)
+    x = x5[:4]
+    coef = divided_differences(x, t)
+    value = newton_eval(coef, x, 0.0)
+    five = divided_differences(x5, t5)
+    prod = float(np.prod(0.0 - x))
+    error = float(five[-1]) * prod
+    # Weights of the fourth divided difference, 1/prod_(i != k)(x_k - x_i) (Burden-Faires (3.10)).
+    weights = [1.0 / float(np.prod([x5[k] - x5[i] for i in range(5) if i != k])) for k in range(5)]
+    rounding = abs(prod) * math.fsum(abs(w) * math.ulp(float(tk)) / 2 for w, tk in zip(weights, t5))
+    with np.errstate(over="ignore"):
+        unscaled = np.ldexp(coef, -e * np.arange(4))  # t[z2_0..z2_k] = t[x_0..x_k] 2^(-e k)
+        fourth = float(np.ldexp(five[-1], -4 * e))
+    return InverseInterpolation(z2, t, unscaled, value, (float(fifth[0]), float(fifth[1])), fourth, error, rounding)

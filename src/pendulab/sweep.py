@@ -69,6 +69,10 @@ def inverse_cubic_rows(z2: np.ndarray, t: np.ndarray, fifth_z2: np.ndarray, fift
     Algorithm 3.2) computed by the same in-place table, vectorised over the rows.
     """
     x5 = np.concatenate([z2, fifth_z2[:, None]], axis=1)
+    # Scaled by a power of two per row, as inverse_cubic does: the same results bit for
+    # bit, but no overflow of t[z2_0..z2_4] ~ h/z2^4 at tiny amplitudes.
+    x5 = np.ldexp(x5, -np.frexp(np.max(np.abs(x5), axis=1))[1][:, None])
+    z2 = x5[:, :4]
     coef = np.concatenate([t, fifth_t[:, None]], axis=1).astype(float)
     for k in range(1, 5):
         coef[:, k:] = (coef[:, k:] - coef[:, k - 1 : -1]) / (x5[:, k:] - x5[:, : 5 - k])
