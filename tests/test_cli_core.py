@@ -164,3 +164,17 @@ def test_period_text_prints_only_correct_digits(cli):
         t0 = 2 * mpmath.pi * mpmath.sqrt(1 / mpmath.mpf("9.80665"))
         assert out[0].split("=")[1].split()[0] == mpmath.nstr(t, 15, strip_zeros=False)
         assert out[1].split("=")[1].split()[0] == mpmath.nstr(t0, 15, strip_zeros=False)
+
+
+def test_estimate_flags_rounding_level_and_offers_dense_output(cli):
+    res = cli("estimate", "-a", "4pi/5", "--step", "1e-3,1e-4", "--dense")
+    assert res.code == 0, res.err
+    lines = res.out.splitlines()
+    assert "dense output" in lines[2]
+    row3, row4 = lines[3], lines[4]
+    assert "-1.550e-15" in row3 and "*" not in row3  # interpolation error, above rounding
+    assert "<1.2e-16*" in row4  # the README's 4.449e-17 is below the rounding of t_k = k h
+    assert lines[5].startswith("* below the rounding level")
+    data = cli("estimate", "-a", "4pi/5", "--step", "1e-4", "--json").json["rows"][0]
+    assert abs(data["cubic_error_estimate"]) <= data["cubic_error_estimate_rounding_level"]
+    assert data["dense_error"] == abs(data["dense"] - cli("period", "-l", "2.0800838231", "-a", "4pi/5", "--json").json["period"])

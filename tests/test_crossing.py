@@ -87,3 +87,85 @@ def test_bad_input(kwargs, name):
     with pytest.raises(InputError) as err:
         estimate_period(**args)
     assert err.value.name == name
+
+
+# ------------------------------------------------------------------ the edges: tiny amplitudes, dense output
+@pytest.mark.parametrize("method", ["taylor2", "rk4", "taylor:8"])
+def test_tiny_amplitudes_give_the_small_amplitude_estimates_bit_for_bit(method):
+    # Below 2^-30, sin(z) = z and cos(z) = 1 in doubles: the simulation is linear and
+    # scales by the power of two exactly, so the estimates must be the same bits
+    # (they were -inf and NaN at 1e-160: the divided differences overflowed).
+    ref = estimate_period(1.0, 2.0**-30, 1e-3, method=method)
+    for e in (-500, -1000):
+        est = estimate_period(1.0, 2.0**e, 1e-3, method=method)
+        assert est.j == ref.j
+        assert (est.linear, est.cubic, est.dense) == (ref.linear, ref.cubic, ref.dense)
+        assert est.cubic_error_estimate == ref.cubic_error_estimate
+        assert est.interpolation.rounding_level == ref.interpolation.rounding_level
+    assert ref.cubic_error < 1e-5 and math.isfinite(ref.cubic_error_estimate)
+
+
+def test_amplitude_1e_160_is_estimated():
+    est = estimate_period(1.0, 1e-160, 1e-3)
+    assert math.isfinite(est.cubic) and math.isfinite(est.cubic_error_estimate)
+    # The period of a 1e-160 rad swing is 2 pi sqrt(l/g) to 1e-320: the cubic is within
+    # the O(h^2) error of (3), as at any small amplitude.
+    assert abs(est.cubic - 2 * math.pi / math.sqrt(9.80665)) < 1e-5
+
+
+def test_sweep_finds_tiny_amplitudes_with_finite_errors():
+    from pendulab.sweep import sweep
+
+    r = sweep(np.array([1e-200, 1e-160, 1e-3]), [1e-3])
+    assert list(r["status"]) == ["found"] * 3
+    assert np.all(np.isfinite(r["cubic_error"])) and np.all(np.abs(r["cubic_error"]) < 1e-5)
+    assert r.summary()[0]["max_abs_cubic_error"] < 1e-5
+
+
+def test_subnormal_amplitude_says_why_not_t_max():
+    with pytest.raises(NoReturnError) as err:
+        estimate_period(1.0, 5e-324, 1e-3)
+    msg = str(err.value)
+    assert "underflow" in msg and "--t-max" not in msg and "no t_max helps" in msg
+
+
+def test_dense_estimate_reaches_the_method_order():
+    import mpmath
+
+    from pendulab.period import period_mp
+
+    exact = float(period_mp(2.0800838231, 4 * math.pi / 5, dps=30))  # the double 4pi/5, mpmath AGM
+    # taylor:8: the cubic stops at O(h^4), the dense estimate keeps going (slope ~8).
+    hs = [0.1, 0.05]
+    dense = [abs(estimate_period(2.0800838231, 4 * math.pi / 5, h, method="taylor:8").dense - exact) for h in hs]
+    cubic = [abs(estimate_period(2.0800838231, 4 * math.pi / 5, h, method="taylor:8").cubic - exact) for h in hs]
+    slope = math.log(dense[0] / dense[1]) / math.log(2)
+    assert 7 < slope < 10.5, slope
+    assert dense[1] < cubic[1] / 1000
+    # taylor:12 at h = 0.1: 4e-6 by the cubic, 3e-13 by the dense output (measured).
+    est = estimate_period(2.0800838231, 4 * math.pi / 5, 0.1, method="taylor:12")
+    assert abs(est.dense - exact) < 1e-12 < 1e-6 < abs(est.cubic - exact)
+    # taylor2: both estimates carry the method's O(h^2) error, and agree to it.
+    est = estimate_period(2.0800838231, 4 * math.pi / 5, 1e-3)
+    assert abs(est.dense - est.cubic) < 1e-8
+    assert mpmath  # mpmath's AGM is the reference above
+
+
+def test_flow_series_is_the_solution_of_the_ode():
+    import mpmath
+
+    from pendulab.dense import flow_series, series_zero
+
+    c, z1, z2 = -9.80665 / 2.0800838231, 2.4, 0.3
+    x = flow_series(z1, z2, c)
+    # Reference: mpmath's own Taylor-series ODE solver at 30 digits, independent of the recurrence.
+    with mpmath.workdps(30):
+        sol = mpmath.odefun(lambda t, y: [y[1], c * mpmath.sin(y[0])], 0, [mpmath.mpf(z1), mpmath.mpf(z2)])
+        for s in (0.01, 0.05):
+            theta, omega = sol(s)
+            assert sum(xk * s**k for k, xk in enumerate(x)) == pytest.approx(float(theta), abs=1e-15)  # 2 ulps
+            assert sum(k * xk * s ** (k - 1) for k, xk in enumerate(x) if k) == pytest.approx(float(omega), abs=4e-16)
+        # The zero of theta' (the top of the swing) by Newton on the series, against mpmath's root.
+        s = series_zero(x, 0.0, 0.0, 0.1)
+        ref = mpmath.findroot(lambda t: sol(t)[1], 0.02)
+        assert s == pytest.approx(float(ref), abs=1e-16)

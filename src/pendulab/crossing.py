@@ -9,6 +9,7 @@ are ever kept, so ``h = 1e-7`` needs no memory for the trajectory.
 from __future__ import annotations
 
 import math
+import sys
 from dataclasses import dataclass
 from typing import Any
 
@@ -17,6 +18,7 @@ import numpy as np
 from . import _validate as v
 from .cases import G
 from .errors import InputError, LeftOscillationError, NoReturnError, NumericalError
+from .dense import dense_crossing
 from .interpolation import InverseInterpolation, inverse_cubic
 from .period import agm_period
 from .results import Result
@@ -49,6 +51,18 @@ class PeriodEstimate(Result):
         The AGM period (8), iterated to convergence.
     window_t, window_theta, window_omega : ndarray, shape (5,)
         The points ``j-2 .. j+2`` of the simulation (times relative to ``t0``).
+    dense : float
+        The zero of ``theta'`` on the Taylor series of the flow through the nearer
+        bracket point (:func:`pendulab.dense.dense_crossing`): the period to the
+        method's own order, where the cubic stops at ``O(h^4)``. An additional
+        estimate; the coursework's is ``cubic``.
+
+    Notes
+    -----
+    ``interpolation.rounding_level`` says how far the rounding of ``t_k = k h`` alone can
+    move ``cubic_error_estimate``; at ``h <= 1e-4`` the estimate is below it
+    (``interpolation.error_estimate_resolved`` is False): it is rounding, not
+    interpolation error.
     """
 
     step: float
@@ -63,10 +77,15 @@ class PeriodEstimate(Result):
     window_t: np.ndarray
     window_theta: np.ndarray
     window_omega: np.ndarray
+    dense: float = math.nan
 
     @property
     def linear_error(self) -> float:
         return abs(self.linear - self.exact)
+
+    @property
+    def dense_error(self) -> float:
+        return abs(self.dense - self.exact)
 
     @property
     def cubic_error(self) -> float:
@@ -129,7 +148,17 @@ def estimate_period(
         raise InputError("step", step, f">= (t_max - t0)/{MAX_STEPS:.0e} (at most {MAX_STEPS:.0e} steps)")
     from ._kernels import FOUND, LEFT_OSCILLATION, NO_RETURN, first_return
 
-    status, j, z1w, z2w = first_return(code, order, alpha, -g / length, step, n)
+    c = -g / length
+    if alpha * abs(c) * step < sys.float_info.min:
+        # theta' changes by about h (g/l) sin(theta) per step: below the smallest normal
+        # double its changes are lost to underflow (5e-324 never moves theta' at all).
+        raise NoReturnError(
+            f"amplitude {alpha:.3g} rad is too small for a simulation in double precision: theta' changes by "
+            f"about h (g/l) alpha = {abs(c) * step:.3g} x {alpha:.3g} rad/s per step, below the smallest normal double "
+            f"{sys.float_info.min:.3g}, so its sign changes are lost to underflow; use an amplitude >= "
+            f"{sys.float_info.min / (abs(c) * step):.3g} rad at this step (no t_max helps)"
+        )
+    status, j, z1w, z2w = first_return(code, order, alpha, c, step, n)
     if status == NO_RETURN:
         suggest = default_t_max(exact, step, t0)
         if suggest <= t_max:
@@ -153,6 +182,7 @@ def estimate_period(
     z2_j, z2_j1 = z2w[2], z2w[3]
     linear = t[2] + step * z2_j / (z2_j - z2_j1)
     interp = inverse_cubic(z2w[1:5], t[1:5], (z2w[0], t[0]))
+    dense = dense_crossing((z1w[2], z1w[3]), (z2w[2], z2w[3]), c, step, float(t[2]))
     return PeriodEstimate(
         step=step,
         method=method,
@@ -166,6 +196,7 @@ def estimate_period(
         window_t=t,
         window_theta=z1w.copy(),
         window_omega=z2w.copy(),
+        dense=float(dense),
     )
 
 

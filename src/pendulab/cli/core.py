@@ -125,9 +125,12 @@ def _plots():
 @click.option("--t-max", "t_max", type=FLOAT, default=None,
               help="End of the simulation; default 1.5 T + 4h from the exact period (8).")
 @_method_option
+@click.option("--dense", is_flag=True,
+              help="Add the period from dense output (the zero of theta' on the flow's Taylor series): "
+                   "the method's own order, where the cubic stops at O(h^4).")
 @g_option
 @json_option
-def estimate(length, amplitude, steps, t_max, method, g, as_json):
+def estimate(length, amplitude, steps, t_max, method, dense, g, as_json):
     """The period from simulations (problem 3(c)-(d)): bracket, linear and cubic estimates."""
     from ..crossing import estimate_period, observed_orders
     from ..group import group_length
@@ -144,19 +147,33 @@ def estimate(length, amplitude, steps, t_max, method, g, as_json):
             "length": length, "amplitude": float(amplitude), "g": float(g), "method": method, "exact": exact,
             "rows": [{"step": r.step, "j": r.j, "bracket": list(r.bracket), "linear": r.linear,
                       "cubic": r.cubic, "cubic_error_estimate": r.cubic_error_estimate,
-                      "linear_error": le, "cubic_error": ce, "linear_order": lo, "cubic_order": co}
+                      "cubic_error_estimate_rounding_level": r.interpolation.rounding_level,
+                      "linear_error": le, "cubic_error": ce, "linear_order": lo, "cubic_order": co,
+                      "dense": r.dense, "dense_error": r.dense_error}
                      for r, le, ce, lo, co in zip(rows, lin_err, cub_err, lin_ord, cub_ord)],
         })
         return
     click.echo(f"l = {length!r} m, alpha = {float(amplitude)!r} rad, method {method}")
     click.echo(f"exact period (AGM, (8))  T = {exact!r} s")
     head = f"{'h':>8} {'bracket [t_j, t_j+1]':>25} {'linear':>18} {'cubic p(0)':>18} {'interp. err. est.':>17} {'|linear - T|':>12} {'|cubic - T|':>12} {'order':>6}"
+    if dense:
+        head += f" {'dense output':>18} {'|dense - T|':>12}"
     click.echo(head)
+    below = False
     for r, le, ce, co in zip(rows, lin_err, cub_err, cub_ord):
         br = f"[{r.bracket[0]:.10g}, {r.bracket[1]:.10g}]"
         order = f"{co:6.2f}" if co is not None else f"{'':>6}"
-        click.echo(f"{r.step:>8g} {br:>25} {r.linear:>18.15g} {r.cubic:>18.15g} {r.cubic_error_estimate:>17.3e} "
-                   f"{le:>12.3e} {ce:>12.3e} {order}")
+        # An estimate below the rounding level of t_k = k h is rounding, not interpolation error.
+        est = f"{r.cubic_error_estimate:.3e}"
+        if not r.interpolation.error_estimate_resolved:
+            est, below = f"<{r.interpolation.rounding_level:.1e}*", True
+        line = (f"{r.step:>8g} {br:>25} {r.linear:>18.15g} {r.cubic:>18.15g} {est:>17} "
+                f"{le:>12.3e} {ce:>12.3e} {order}")
+        if dense:
+            line += f" {r.dense:>18.15g} {r.dense_error:>12.3e}"
+        click.echo(line)
+    if below:
+        click.echo("* below the rounding level of t_k = k h: the estimate there is rounding, not interpolation error")
 
 
 @click.command()
