@@ -39,7 +39,7 @@ def flow_series(z1: float, z2: float, c: float, degree: int = DEGREE) -> list[fl
     through ``theta = z1``, ``theta' = z2``.
 
     ``S_k = 1/k sum_(j=1..k) j x_j C_(k-j)``, ``C_k = -1/k sum_(j=1..k) j x_j S_(k-j)``
-    (``sin(theta)' = cos(theta) theta'``, ``cos(theta)' = -sin(theta) theta'``; Moore [1]_)
+    (``sin(theta)' = cos(theta) theta'``, ``cos(theta)' = -sin(theta) theta'``; Moore 1966, ch. 11)
     and ``(k+1)(k+2) x_(k+2) = c S_k``.
     """
     x = [0.0] * (degree + 1)
@@ -94,6 +94,9 @@ def dense_crossing(z1: tuple[float, float], z2: tuple[float, float], c: float, s
                    t_j: float) -> float:
     """The time in ``[t_j, t_j + h]`` at which ``theta'`` vanishes, from the flow's series.
 
+    The series is expanded about whichever bracket end the linear estimate puts closer
+    to the zero, so that ``|s| <= h/2`` and the truncation is smallest.
+
     Parameters
     ----------
     z1, z2 : (float, float)
@@ -105,8 +108,10 @@ def dense_crossing(z1: tuple[float, float], z2: tuple[float, float], c: float, s
     t_j : float
         ``t_j`` (relative to ``t0``).
 
-    The series is expanded about whichever bracket end the linear estimate puts closer
-    to the zero, so that ``|s| <= h/2`` and the truncation is smallest.
+    Returns
+    -------
+    float
+        The crossing time, relative to ``t0``.
     """
     frac = z2[0] / (z2[0] - z2[1])  # linear estimate, in units of h from t_j
     if frac <= 0.5:

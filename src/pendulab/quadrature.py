@@ -146,7 +146,7 @@ def composite_graded(rule: Rule, f: Callable[[np.ndarray], np.ndarray], b: float
     Panel edges ``0, e_1, ..., e_n = b`` with ``e_i = b r^(n-i)`` and ``e_1 = first``:
     each panel ``[e, r e]`` sees a singularity at distance about ``first`` from 0 under
     the same angle, so every panel converges alike however close the singularity is
-    (geometric grading, [2]_ section 2.12; Schwab, *p- and hp-FEM*, 1998, section 3.3).
+    (geometric grading: Davis and Rabinowitz 1984, section 2.12; Schwab, *p- and hp-FEM*, 1998, section 3.3).
     """
     b = v.positive("b", b)
     first = v.positive("first", first)
