@@ -25,6 +25,17 @@ if TYPE_CHECKING:  # names for annotations; the modules load when a problem runs
 
 
 # --------------------------------------------------------------------------- problem 3
+#: 3(d): the interpolation error counts as negligible when it is below this fraction of
+#: the Taylor method's own error in the period.
+NEGLIGIBLE_RATIO = 1e-3
+#: 3(b): how far (in exact periods) the h = 0.2 simulation is searched for its first
+#: return to P or its passage over the top.
+PLOT_SEARCH_PERIODS = 4.0
+
+#: 3(b): what the h = 0.2 simulation does first.
+RETURNS, LEAVES, NO_RETURN = "returns", "leaves", "none"
+
+
 @dataclass(frozen=True, eq=False)
 class Problem3(Result):
     """Problem 3: the Taylor simulation and the period recovered from it.
@@ -40,16 +51,27 @@ class Problem3(Result):
     exact : float
         ``T^`` of (8) (7 iterations, as the coursework prescribes) for the group's pendulum.
     plot : Trajectory
-        3(b): ``h = 0.2`` on ``[0, plot_t_max]``, ``plot_t_max`` the first multiple of ``h``
-        beyond ``1.25 T^`` so the first return to ``P`` is in view.
+        3(b): ``h = 0.2`` on ``[0, plot_t_max]`` (see :func:`plot_t_max`).
+    plot_t_max : float
+    plot_outcome : str
+        What the ``h = 0.2`` simulation does first: ``"returns"`` to ``P`` (bracket in
+        ``plot_estimate``), ``"leaves"`` the oscillation (goes over the top, ``|z1| > pi``,
+        at ``plot_left_at``: the step is too large for this pendulum), or ``"none"``
+        (neither within ``PLOT_SEARCH_PERIODS`` exact periods).
+    plot_left_at : float or None
+        The first ``t_j`` with ``|z1_j| > pi`` when ``plot_outcome == "leaves"``.
     plot_estimate : PeriodEstimate or None
-        The bracket of the ``h = 0.2`` simulation (None if it never returns).
+        The bracket of the ``h = 0.2`` simulation when it returns.
     estimates : list of PeriodEstimate
         3(c): one per step ``h = 10^-j``, ``j = 2, 3, 4``.
     linear_orders, cubic_orders : list of float or None
         Observed orders of the period error between consecutive steps.
     cubic : PeriodEstimate
         3(d): the estimate with ``h = 1e-3`` (its ``interpolation`` holds the table).
+    interpolation_ratio : float
+        3(d): the interpolation error estimate over the Taylor method's error in the period.
+    interpolation_negligible : bool
+        3(d)'s answer: ``interpolation_ratio < NEGLIGIBLE_RATIO``.
     """
 
     figure3: Trajectory
@@ -58,11 +80,15 @@ class Problem3(Result):
     exact: float
     plot: Trajectory
     plot_t_max: float
+    plot_outcome: str
+    plot_left_at: float | None
     plot_estimate: PeriodEstimate | None
     estimates: list[PeriodEstimate]
     linear_orders: list[float | None]
     cubic_orders: list[float | None]
     cubic: PeriodEstimate
+    interpolation_ratio: float
+    interpolation_negligible: bool
 
     @property
     def taylor_error(self) -> float:
@@ -70,9 +96,40 @@ class Problem3(Result):
         return abs(self.cubic.cubic - self.exact)
 
 
-def plot_t_max(exact: float, step: float) -> float:
-    """``t_max`` for 3(b): the first multiple of ``h`` beyond ``1.25 T^`` (based on (8))."""
-    return step * math.ceil(1.25 * exact / step)
+def plot_t_max(event: float, step: float) -> float:
+    """``t_max`` for 3(b): the first multiple of ``h`` at or beyond ``1.25`` times ``event``.
+
+    ``event`` is the later of ``T^`` (8) and the end of the simulation's own bracket when
+    it returns to ``P``, or the time it goes over the top: the event is in view, with a
+    quarter of it to spare. (The quotient is rounded to 9 decimals first, so that a
+    product like ``1.25 * 5.2`` that lands a rounding error above ``6.5`` gives 6.5.)
+    """
+    return step * math.ceil(round(1.25 * event / step, 9))
+
+
+def plot_outcome(length: float, amplitude: float, step: float, exact: float):
+    """3(b): ``(outcome, left_at, estimate, t_max)`` of the simulation with step ``step``.
+
+    The simulation is searched over ``PLOT_SEARCH_PERIODS`` exact periods: it returns to
+    ``P`` (sign change of ``z2`` with ``z1 > 0``), or its discrete energy grows until it
+    goes over the top (``|z1| > pi``), which the exact pendulum, released below the top
+    at rest, never does.
+    """
+    from .errors import LeftOscillationError, NoReturnError
+
+    search = PLOT_SEARCH_PERIODS * exact
+    try:
+        est = estimate_period(length, amplitude, step, search)
+    except LeftOscillationError:
+        import numpy as np
+
+        tr = simulate(length, amplitude, step, search)
+        j = int(np.argmax(np.abs(tr.theta) > math.pi))
+        left_at = float(tr.t[j])
+        return LEAVES, left_at, None, plot_t_max(left_at, step)
+    except NoReturnError:
+        return NO_RETURN, None, None, plot_t_max(search / 1.25, step)
+    return RETURNS, None, est, plot_t_max(max(exact, est.bracket[1]), step)
 
 
 def problem3(
@@ -88,17 +145,15 @@ def problem3(
     alpha = float(cases.PROBLEM3_AMPLITUDE)
     exact = agm_period(length, alpha, iterations=7)
     h = cases.PROBLEM3_PLOT_STEP
-    t_max = plot_t_max(exact, h)
+    outcome, left_at, plot_estimate, t_max = plot_outcome(length, alpha, h, exact)
     plot = simulate(length, alpha, h, t_max)
-    try:
-        plot_estimate = estimate_period(length, alpha, h, t_max)
-    except ValueError:
-        plot_estimate = None
     steps = list(steps)
     if cubic_step not in steps:
         steps.append(cubic_step)
     estimates = [estimate_period(length, alpha, s) for s in steps]
     cubic = estimates[steps.index(cubic_step)]
+    taylor_err = abs(cubic.cubic - exact)
+    ratio = abs(cubic.cubic_error_estimate) / taylor_err if taylor_err > 0 else math.inf
     return Problem3(
         figure3=figure3,
         group=group,
@@ -106,11 +161,15 @@ def problem3(
         exact=exact,
         plot=plot,
         plot_t_max=t_max,
+        plot_outcome=outcome,
+        plot_left_at=left_at,
         plot_estimate=plot_estimate,
         estimates=estimates,
         linear_orders=observed_orders(steps, [abs(e.linear - exact) for e in estimates]),
         cubic_orders=observed_orders(steps, [abs(e.cubic - exact) for e in estimates]),
         cubic=cubic,
+        interpolation_ratio=ratio,
+        interpolation_negligible=ratio < NEGLIGIBLE_RATIO,
     )
 
 
@@ -131,7 +190,21 @@ def problem1(
     return gravity_estimate(length, length_error, period, period_error)
 
 
+def digit_thresholds(value: float, digits: int) -> tuple[int, float, float]:
+    """1(b): ``k = floor(log10|value|)`` and the bounds ``0.5 10^(k-n+1)`` for ``n`` and ``n+1`` digits.
+
+    An approximation has ``n`` significant digits when its error is at most the first
+    bound; the second is the bound for one digit more.
+    """
+    k = math.floor(math.log10(abs(value)))
+    return k, 0.5 * 10.0 ** (k - digits + 1), 0.5 * 10.0 ** (k - digits)
+
+
 # --------------------------------------------------------------------------- problem 2
+#: The conditions of :func:`pendulab.newton.check_interval`, in its order.
+CONDITION_KEYS = ("sign", "df", "d2f", "step_a", "step_b")
+
+
 @dataclass(frozen=True, eq=False)
 class Problem2(Result):
     """Problem 2: the amplitude with ``T~ = target`` by Newton's method on (9).
@@ -148,6 +221,8 @@ class Problem2(Result):
         The starting value (rad).
     x0_rule : str
         Why this ``x0``.
+    x0_from_fourier : bool
+        ``x0`` was chosen by Fourier's condition (not given by the caller).
     x0_in_interval : bool
     run : NewtonResult
         Iterates, corrections, ``q_k``, ``k_max``, asymptotic constant, error estimate.
@@ -155,6 +230,10 @@ class Problem2(Result):
         The last iterate, rad and degrees.
     closed_form : float
         ``2 arcsin(2 sqrt(target p/(2 pi) - 1))``: (9) solved by hand, as a check.
+    condition_values : dict
+        The numbers of each condition of 2(a) under a short key: ``sign`` (``f_a``, ``f_b``),
+        ``df`` and ``d2f`` (``min``, ``max`` on the grid), ``step_a`` and ``step_b``
+        (``step``, ``width``).
     ratios : tuple of float
         ``|x[k+2]-x[k+1]| / |x[k+1]-x[k]|`` -> 0: convergence is superlinear (2(b)).
     justification : str
@@ -166,11 +245,13 @@ class Problem2(Result):
     interval_degrees: tuple[float, float]
     x0: float
     x0_rule: str
+    x0_from_fourier: bool
     x0_in_interval: bool
     run: "NewtonResult"
     alpha: float
     alpha_degrees: float
     closed_form: float
+    condition_values: dict[str, dict[str, float]]
     ratios: tuple[float | None, ...]
     justification: str
 
@@ -224,11 +305,13 @@ def problem2(
         interval_degrees=(a_deg, b_deg),
         x0=start,
         x0_rule=rule,
+        x0_from_fourier=x0 is None,
         x0_in_interval=chk.a <= start <= chk.b,
         run=run,
         alpha=run.root,
         alpha_degrees=math.degrees(run.root),
         closed_form=eq.closed_form(),
+        condition_values={key: dict(c.values) for key, c in zip(CONDITION_KEYS, chk.conditions)},
         ratios=ratios,
         justification=(
             "f'(alpha) = (2 pi/p) sin(alpha)/8 > 0 on (0, pi) and f''(alpha) = (2 pi/p) cos(alpha)/8 is "
@@ -367,6 +450,11 @@ def problem4(
 
 
 # --------------------------------------------------------------------------- problem 5
+#: 5(d): an error below this many units of roundoff of ``T^`` is rounding, not truncation
+#: (the floor of the observed rates in :func:`pendulab.quadrature.convergence_table`).
+ROUNDING_FLOOR = 64 * 2.0**-52
+
+
 @dataclass(frozen=True, eq=False)
 class Problem5(Result):
     """Problem 5: the period integral (1) by rule (11), simple and composite.
@@ -388,6 +476,10 @@ class Problem5(Result):
     rows : tuple of QuadratureRow
         5(d): ``n``, period, error, observed rate; with the substitution's columns.
     rate_explanation : str
+    rounding_floor : float
+        ``64 u T^``: an error below it is rounding, not truncation.
+    substitution_converged_n : int or None
+        The first ``n`` whose substituted error is at the rounding floor.
     """
 
     length: float
@@ -400,6 +492,8 @@ class Problem5(Result):
     composite10: float
     rows: tuple
     rate_explanation: str
+    rounding_floor: float
+    substitution_converged_n: int | None
 
 
 def problem5(
@@ -414,6 +508,9 @@ def problem5(
 
     exact = agm_period(length, amplitude, g, iterations=7)
     rows = convergence_table(length, amplitude, ns, exact, g, substitution=substitution)
+    floor = ROUNDING_FLOOR * abs(exact)
+    converged = next((row.n for row in rows if row.substitution_error is not None
+                      and row.substitution_error <= floor), None)
     return Problem5(
         length=float(length),
         amplitude=float(amplitude),
@@ -431,4 +528,6 @@ def problem5(
             "After sin(theta/2) = sin(alpha/2) sin(phi) the integrand is analytic and the same rule "
             "converges geometrically fast, down to rounding level."
         ),
+        rounding_floor=floor,
+        substitution_converged_n=converged,
     )

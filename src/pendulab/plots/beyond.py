@@ -1,7 +1,9 @@
-"""Figures beyond the coursework: approximation errors, sweep errors, global error of a simulation."""
+"""Figures beyond the coursework: approximation errors and sweep errors."""
 from __future__ import annotations
 
 import numpy as np
+
+from . import axes
 
 # Below this a relative error is rounding of double precision, not the formula: drawn at the floor.
 _FLOOR = 1e-17
@@ -10,8 +12,9 @@ _FLOOR = 1e-17
 def approximation_errors(ax, table):
     """``|relative error|`` of each period formula against the amplitude (degrees), log scale.
 
-    ``table`` is a :class:`pendulab.approximations.ApproximationErrors`. Returns the lines.
+    ``table`` is a :class:`pendulab.approximations.ApproximationErrors`. Returns ``ax``.
     """
+    ax = axes(ax)
     deg = np.degrees(table.amplitudes)
     lines = []
     rounding = 4 * np.finfo(float).eps  # below: rounding of the comparison itself, not drawn
@@ -27,15 +30,16 @@ def approximation_errors(ax, table):
     ax.set_ylabel(r"$|T_{\rm approx}/T - 1|$")
     ax.grid(True, which="major", linewidth=0.3)
     ax.legend(fontsize="x-small", loc="lower right")
-    return lines
+    return ax
 
 
 def sweep_errors(ax, result):
     """``|cubic period error|`` against the amplitude, one line per (method, step).
 
     ``result`` is a :class:`pendulab.sweep.SweepResult`. Pendulums whose simulation did
-    not return (status other than ``found``) are left out. Returns the lines.
+    not return (status other than ``found``) are left out. Returns ``ax``.
     """
+    ax = axes(ax)
     lines = []
     for row in result.summary():
         r = result.select(row["method"], row["step"])
@@ -47,23 +51,4 @@ def sweep_errors(ax, result):
     ax.set_ylabel(r"$|T_{\rm cubic} - T|$ (s)")
     ax.grid(True, which="major", linewidth=0.3)
     ax.legend(fontsize="x-small")
-    return lines
-
-
-def global_error(ax, errors):
-    """``|theta error|`` and ``|energy drift|`` of simulations against time, one pair per entry.
-
-    ``errors`` is a sequence of :class:`pendulab.motion.GlobalError`. Returns the lines.
-    """
-    lines = []
-    for i, e in enumerate(errors):
-        (a,) = ax.semilogy(e.t, np.maximum(np.abs(e.theta_error), _FLOOR), color=f"C{i}",
-                           label=rf"{e.method}, $h = {e.step:g}$: $|z_1 - \theta|$")
-        (b,) = ax.semilogy(e.t, np.maximum(np.abs(e.energy_drift), _FLOOR), color=f"C{i}", linestyle="--",
-                           label=rf"{e.method}: $|E - E_0|$")
-        lines += [a, b]
-    ax.set_xlabel("t (s)")
-    ax.set_ylabel("error")
-    ax.grid(True, which="major", linewidth=0.3)
-    ax.legend(fontsize="x-small")
-    return lines
+    return ax

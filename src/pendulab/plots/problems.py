@@ -1,79 +1,98 @@
-"""Figures of problems 2, 4 and 5, drawn from the results of :mod:`pendulab.problems`."""
+"""Figures of problems 2, 4 and 5, drawn from the results of :mod:`pendulab.problems`.
+
+The labels default to English; the report passes its catalogue's words.
+"""
 from __future__ import annotations
 
 import numpy as np
 
+from . import axes
 
-def fit(ax, result, show_exact: bool = False):
-    """4(d)(i): the data ``(t_j, z1_j)`` and the least-squares ``phi~`` on one plot.
+#: 5(d): the n^(-1/2) guide is drawn this factor above the first error, beside the data
+#: (which follow it exactly) rather than on top of them.
+GUIDE_OFFSET = 4.0
 
-    ``result`` is a :class:`pendulab.problems.Problem4`. Returns ``(points, curve)``.
+
+def fit(ax, result, show_exact: bool = False, title: bool = True, labels: dict[str, str] | None = None):
+    """4(d)(i): every data point ``(t_j, z1_j)`` and the least-squares ``phi~`` on one plot.
+
+    ``result`` is a :class:`pendulab.problems.Problem4`. Returns ``ax``.
     """
+    ax = axes(ax)
     t, y = result.data.t, result.data.theta
-    stride = max(1, len(t) // 200)  # keep the markers readable; the fit uses every point
-    (points,) = ax.plot(t[::stride], y[::stride], "o", markersize=3, color="C0",
-                        label=f"data $(t_j, z_{{1,j}})$, {len(t)} points" + (f" (every {stride})" if stride > 1 else ""))
-    (curve,) = ax.plot(result.curve_t, result.curve_phi, "-", color="C3", linewidth=1.2,
-                       label=r"least squares $\tilde\phi(t)$, basis (10)")
+    words = {"data": f"data $(t_j, z_{{1,j}})$, {len(t)} points",
+             "fit": r"least squares $\tilde\phi(t)$, basis (10)", "exact": r"exact $\theta(t)$"} | (labels or {})
+    ax.plot(t, y, "o", markersize=1.2, color="C0", label=words["data"])
+    ax.plot(result.curve_t, result.curve_phi, "-", color="C3", linewidth=0.8, label=words["fit"])
     if show_exact:
-        ax.plot(result.curve_t, result.curve_exact, ":", color="0.3", linewidth=1, label=r"exact $\theta(t)$")
+        ax.plot(result.curve_t, result.curve_exact, ":", color="0.3", linewidth=1, label=words["exact"])
     ax.set_xlabel("t (s)")
-    ax.set_ylabel(r"$\theta$ (rad)")
-    ax.set_title(
-        rf"$l = {result.length:g}$, $\alpha = {result.amplitude:.6g}$, $h = {result.step:g}$; "
-        rf"SSD = {result.fit.ssd:.3e}, max dev. = {result.fit.max_deviation:.2e}",
-        fontsize="medium",
-    )
-    ax.legend(fontsize="small")
-    return points, curve
+    ax.set_ylabel(r"$z_{1,j}$, $\tilde\phi(t)$ (rad)")
+    if title:
+        ax.set_title(
+            rf"$l = {result.length:g}$, $\alpha = {result.amplitude:.6g}$, $h = {result.step:g}$; "
+            rf"SSD = {result.fit.ssd:.3e}, max dev. = {result.fit.max_deviation:.2e}",
+            fontsize="medium",
+        )
+    ax.legend(loc="best", frameon=False, fontsize="small")
+    ax.grid(alpha=0.3, linewidth=0.4)
+    return ax
 
 
 def fit_residuals(ax, result):
-    """The deviations ``z1_j - phi~(t_j)`` of problem 4 and the 1e-5 threshold of 4(d)(ii)."""
-    (line,) = ax.plot(result.data.t, result.fit.residuals, "-", color="C0", linewidth=1)
+    """The deviations ``z1_j - phi~(t_j)`` of problem 4 and the 1e-5 threshold of 4(d)(ii). Returns ``ax``."""
+    ax = axes(ax)
+    ax.plot(result.data.t, result.fit.residuals, "-", color="C2", linewidth=0.8)
     for s in (1, -1):
-        ax.axhline(s * result.tolerance, color="C3", linestyle="--", linewidth=0.8)
+        ax.axhline(s * result.tolerance, color="C3", linestyle="--", linewidth=0.6)
+    ax.axhline(0, color="0.6", linewidth=0.5)
     ax.set_xlabel("t (s)")
     ax.set_ylabel(r"$z_{1,j} - \tilde\phi(t_j)$ (rad)")
-    return line
+    ax.ticklabel_format(axis="y", style="sci", scilimits=(-3, 3))
+    ax.grid(alpha=0.3, linewidth=0.4)
+    return ax
 
 
-def quadrature_convergence(ax, result):
+def quadrature_convergence(ax, result, labels: dict[str, str] | None = None):
     """5(d): ``|S_n - T^|`` against ``n`` on log-log axes, with an ``n^(-1/2)`` guide.
 
-    ``result`` is a :class:`pendulab.problems.Problem5`. Returns the lines drawn.
+    The guide is drawn ``GUIDE_OFFSET`` times above the data, which follow it exactly.
+    ``result`` is a :class:`pendulab.problems.Problem5`. Returns ``ax``.
     """
+    ax = axes(ax)
+    words = {"plain": "rule (11), integral (1)", "guide": r"$\propto n^{-1/2}$",
+             "sub": r"after $\sin(\theta/2) = \sin(\alpha/2)\sin\varphi$",
+             "x": "n (subintervals)", "y": r"$|T_{S_n} - \hat T|$ (s)"} | (labels or {})
     rows = result.rows
     n = np.array([r.n for r in rows], dtype=float)
     err = np.array([r.error for r in rows])
-    lines = [ax.loglog(n, err, "o-", color="C0", label="rule (11), integral (1)")[0]]
-    guide = err[0] * (n / n[0]) ** -0.5
-    lines.append(ax.loglog(n, guide, ":", color="0.4", label=r"slope $-1/2$")[0])
+    ax.loglog(n, err, "o-", color="C0", markersize=3, label=words["plain"])
+    ax.loglog(n, GUIDE_OFFSET * err[0] * (n / n[0]) ** -0.5, ":", color="0.4", label=words["guide"])
     sub = [(r.n, r.substitution_error) for r in rows if r.substitution_error is not None]
     if sub:
         floor = np.finfo(float).eps * result.exact
         ns, es = zip(*sub)
         shown = np.maximum(np.array(es), floor)  # an error of exactly 0 sits on the rounding floor
-        lines.append(ax.loglog(ns, shown, "s-", color="C2",
-                               label=r"after $\sin(\theta/2) = \sin(\alpha/2)\sin\varphi$")[0])
-    ax.set_xlabel("n (subintervals)")
-    ax.set_ylabel(r"$|S_n$-based $T - \hat T|$ (s)")
-    ax.grid(True, which="both", linewidth=0.3)
-    ax.legend(fontsize="small")
-    return lines
+        ax.loglog(ns, shown, "s-", color="C2", markersize=3, label=words["sub"])
+    ax.set_xlabel(words["x"])
+    ax.set_ylabel(words["y"])
+    ax.grid(True, which="both", alpha=0.3, linewidth=0.4)
+    ax.legend(loc="best", frameon=False, fontsize="small")
+    return ax
 
 
 def newton_corrections(ax, result):
     """2(b): ``|x[k+1] - x[k]|`` against ``k`` (semilog): the exponent doubles each step.
 
-    ``result`` is a :class:`pendulab.problems.Problem2`. Returns the line drawn.
+    ``result`` is a :class:`pendulab.problems.Problem2`. Returns ``ax``.
     """
+    ax = axes(ax)
     d = np.abs(np.array(result.run.corrections))
     k = np.arange(len(d))
     keep = d > 0
-    (line,) = ax.semilogy(k[keep], d[keep], "o-", color="C0")
+    ax.semilogy(k[keep], d[keep], "o-", color="C0")
     ax.axhline(result.run.rounding_level, color="C3", linestyle="--", linewidth=0.8, label="rounding level")
     ax.set_xlabel("k")
     ax.set_ylabel(r"$|x_{k+1} - x_k|$ (rad)")
     ax.legend(fontsize="small")
-    return line
+    return ax
