@@ -24,6 +24,7 @@ COMMANDS = {
     "fit": "problems:fit",
     "quadrature": "problems:quadrature",
     "report": "report:report",
+    "key": "key:key",
     "serve": "serve:serve",
     "approximations": "beyond:approximations",
     "sweep": "beyond:sweep",

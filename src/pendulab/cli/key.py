@@ -1,0 +1,50 @@
+"""``pendulab key``: the teacher's answer key for many groups."""
+from __future__ import annotations
+
+import click
+
+
+@click.command()
+@click.option("--groups", "groups_file", required=True, type=click.Path(dir_okay=False),
+              help="A text file, one group per line: student numbers separated by commas or spaces "
+                   "(blank lines and # comments allowed).")
+@click.option("--output", "-o", default=None, type=click.Path(dir_okay=False),
+              help="Write the key to this file: .csv, .json or .pdf (atomically).")
+@click.option("--json", "as_json", is_flag=True, help="Print the key as one JSON document on stdout.")
+def key(groups_file: str, output: str | None, as_json: bool) -> None:
+    """The answers of every group (problem 3) and the common answers (problems 1, 2, 4, 5) once."""
+    from .. import key as answer
+    from .._atomic import check_writable
+    from ._common import emit_json
+
+    # Every input checked before the work: the whole file, the output path and format.
+    groups = answer.read_groups(groups_file)
+    if output is not None:
+        fmt = answer.output_format(output)
+        check_writable("output", output)
+        if fmt == "pdf":
+            from .._extras import require
+
+            require("typst", "pendulab key --output FILE.pdf")
+    k = answer.answer_key(groups)
+    if output is not None:
+        answer.write_key(k, output)
+        click.echo(f"pendulab: wrote {output} ({len(groups)} groups)", err=True)
+    if as_json:
+        emit_json(k.to_dict())
+    elif output is None:
+        _table(k)
+
+
+def _table(k) -> None:
+    """A plain-text summary: one line per group."""
+    for name, answers in k.common.items():
+        click.echo(f"# {name}: " + ", ".join(f"{a}={v}" for a, v in answers.items() if not isinstance(v, list)))
+    click.echo(f"{'students':<28} {'l':>13} {'T^':>18} {'3(b) h=0.2':>18} " +
+               " ".join(f"{'p(0) h=' + format(e['step'], 'g'):>18}" for e in k.groups[0]["estimates"]))
+    for g in k.groups:
+        p = g["plot"]
+        shown = (f"[{p['bracket'][0]:.4g}, {p['bracket'][1]:.4g}]" if p["outcome"] == "returns"
+                 else f"leaves at {p['left_at']:.4g}" if p["outcome"] == "leaves" else "no return")
+        click.echo(f"{' '.join(map(str, g['students'])):<28} {g['length_text']:>13} {g['exact']:>18.15g} "
+                   f"{shown:>18} " + " ".join(f"{e['cubic']:>18.15g}" for e in g["estimates"]))
