@@ -6,6 +6,7 @@ g = 4 pi^2 l / T^2); the rest are the library's own results, which the report mu
 """
 from __future__ import annotations
 
+import functools
 import math
 
 import mpmath
@@ -18,12 +19,22 @@ from pendulab.report import build_report, load_catalogue
 
 EXAMPLE = (262, 407, 634)
 OTHER = (81234, 90876)  # sum 172110 -> digits 1,7,2,1,1
+SHORT = (99999, 1)  # sum 100000 -> l = 1: the h = 0.2 simulation goes over the top
 
 
+@functools.lru_cache(maxsize=None)
 def pdf_text(path) -> str:
+    """The PDF's text (extracted once per file: pypdf takes seconds on the appendix's code)."""
     reader = pypdf.PdfReader(str(path))
     text = "\n".join(page.extract_text() for page in reader.pages)
     return text.replace("\u2212", "-")  # the typeset minus sign
+
+
+def words(path) -> str:
+    """The text with math italics as plain letters and single spaces (for phrases with math)."""
+    import unicodedata
+
+    return " ".join(unicodedata.normalize("NFKC", pdf_text(path)).split())
 
 
 def pages(path) -> int:
@@ -32,10 +43,10 @@ def pages(path) -> int:
 
 @pytest.fixture(scope="module")
 def built(tmp_path_factory):
-    """The report for the example group in English and Portuguese, and for another group."""
+    """The report for the example group in English and Portuguese, and for the l = 1 group."""
     d = tmp_path_factory.mktemp("report")
     out = {}
-    for key, students, lang in (("en", EXAMPLE, "en"), ("pt", EXAMPLE, "pt"), ("other", OTHER, "en")):
+    for key, students, lang in (("en", EXAMPLE, "en"), ("pt", EXAMPLE, "pt"), ("short", SHORT, "en")):
         path = d / f"{key}.pdf"
         build_report(students, lang=lang, output=path)
         out[key] = path
@@ -48,7 +59,7 @@ def test_catalogues_have_the_same_entries():
     assert en["p1.title"] != pt["p1.title"]
 
 
-@pytest.mark.parametrize("key", ["en", "pt", "other"])
+@pytest.mark.parametrize("key", ["en", "pt", "short"])
 def test_builds_within_15_pages_and_every_placeholder_filled(built, key):
     n = pages(built[key])
     assert 8 <= n <= 15
@@ -64,7 +75,8 @@ def test_languages_differ(built):
     en, pt = pdf_text(built["en"]), pdf_text(built["pt"])
     assert "Problem 4: trigonometric least squares" in en
     assert "Problema 4: mínimos quadrados trigonométricos" in pt
-    assert "algarismos significativos" in pt and "significant digits" not in pt
+    body = pt.split("Apêndice: os programas")[0]  # the appendix prints the programs' English docstrings
+    assert "algarismos significativos" in body and "significant digits" not in body
 
 
 def test_problem1_numbers(built):
@@ -123,7 +135,7 @@ def test_problem5_numbers(built):
     assert f"{r.single:.12g}" in text
     assert f"{r.composite10:.12g}" in text
     for row in r.rows[1:]:
-        assert f"{row.period:.12g}" in text
+        assert f"{row.period:.16g}" in text  # Table 10: 16 digits in both period columns
 
 
 def test_agm_section(built):
@@ -137,16 +149,22 @@ def test_appendix_lists_the_code_that_ran(built):
     assert "_kernels.taylor2_step" in text
     # A line of the kernel's body, as in the source file.
     assert "z1_next = z1 + h * z2 + 0.5 * h * h * c * s" in text
+    # The programs the issue found missing: rule (11), basis (10), the prefactor, the drivers,
+    # the exact motion and the mpmath code of Table 1; comments and docstrings kept.
+    for name in ("quadrature.GAUSS3", "lsq.TRIG_BASIS", "quadrature.period_prefactor", "problems.problem3",
+                 "problems.plot_outcome", "problems.problem4", "motion.exact_motion",
+                 "period.fixed_iterations_error", "period.period_digits"):
+        assert name in text, name
+    assert "Rule (11): 3-point Gauss-Legendre, degree of exactness 5." in text
+    assert "Basis (10)" in text
 
 
-def test_other_group_changes_length_and_numbers(built):
-    other, en = pdf_text(built["other"]), pdf_text(built["en"])
-    # 81234 + 90876 = 172110 -> digits 1, 7, 2, 1, 1: l = (14)^(1/5), independently by mpmath.
-    l_other = mpmath.nstr(mpmath.root(14, 5), 11)  # 1.69521820307... to 10 decimals
-    assert l_other in other and l_other not in en
-    assert "2.0800838231" not in other
-    r = problems.problem3(OTHER)
-    assert f"{r.cubic.cubic:.15g}" in other and f"{r.cubic.cubic:.15g}" not in en
+def test_short_pendulum_says_the_simulation_leaves_the_oscillation(built):
+    text = words(built["short"])
+    assert "1.0000000000" in text and "2.0800838231" not in text
+    assert "The step is too large for this pendulum" in text
+    assert "it leaves the oscillation at t = 4 s" in text
+    assert "then in view" not in text and "does not return to P within" not in text
 
 
 def test_same_inputs_same_bytes(built, tmp_path):
@@ -157,8 +175,10 @@ def test_same_inputs_same_bytes(built, tmp_path):
 
 def test_cli_writes_the_report(tmp_path, capsys):
     out = tmp_path / "r.pdf"
-    assert main(["report", "--students", "262,407,634", "--lang", "pt", "--output", str(out)]) == 0
+    assert main(["report", "--students", "99999,1", "--lang", "pt", "--output", str(out)]) == 0
     assert pages(out) <= 15
+    text = words(out)
+    assert "O passo é demasiado grande para este pêndulo" in text and "sai da oscilação em t = 4 s" in text
     err = capsys.readouterr().err
     assert "\x1b[" not in err  # no progress display when stderr is not a terminal
 
@@ -203,3 +223,196 @@ def test_failed_run_keeps_the_older_file(tmp_path, monkeypatch):
         build_report(EXAMPLE, output=out)
     assert out.read_bytes() == b"older report"
     assert sorted(p.name for p in tmp_path.iterdir()) == ["report.pdf"]  # no temporary left
+
+
+# ----------------------------------------------------------------------------- Table 1 and Section 0
+def _nome_error(alpha, n=7):
+    """v_n/M - 1 = theta_3(q^(2^(n+1)))^2 - 1 (a_n = M theta_3(q^(2^n))^2): a second method."""
+    with mpmath.workdps(60):
+        q = mpmath.qfrom(m=mpmath.sin(alpha / 2) ** 2)
+        big_q = q ** (2 ** (n + 1))
+        # theta_3(Q)^2 - 1 = 4Q + 4Q^2 + ... (series kept to where it matters)
+        series = 2 * sum(big_q ** (k * k) for k in range(1, 4))
+        return 2 * series + series**2
+
+
+def test_table1_column_against_the_theta_closed_form(tmp_path):
+    from pendulab.report.builder import section_data
+    from pendulab.report.markup import sci_mp
+
+    doc = section_data(EXAMPLE, "en", tmp_path, only=["exact period"])
+    column = [row[3] for row in doc.tables["agm"]]
+    with mpmath.workdps(60):
+        alphas = [mpmath.pi / 4, mpmath.pi / 2, 4 * mpmath.pi / 5, mpmath.mpf("0.99") * mpmath.pi,
+                  mpmath.pi - mpmath.mpf("1e-6"), mpmath.pi - mpmath.mpf("1e-12")]
+        expected = [sci_mp(_nome_error(a), 2) for a in alphas]
+    assert column == expected
+    # The issue's values: about 1e-513 at pi/4 and 1.7e-216 at 4 pi/5; growing with alpha.
+    assert column[0].endswith("10#super[−513]") and column[2] == "1.7 × 10#super[−216]"
+    with mpmath.workdps(60):
+        sizes = [_nome_error(a) for a in alphas]
+    assert sizes == sorted(sizes)
+
+
+def test_section0_takes_the_inputs_exactly(tmp_path):
+    from pendulab.report.builder import section_data
+
+    doc = section_data(EXAMPLE, "en", tmp_path, only=["exact period"])
+    # `pendulab period -l 2.0800838231 -a 4pi/5 --digits 20`, and mpmath here from the exact inputs.
+    with mpmath.workdps(60):
+        t = 2 * mpmath.pi * mpmath.sqrt(mpmath.mpf("2.0800838231") / mpmath.mpf("9.80665")) / mpmath.agm(
+            1, mpmath.cos(2 * mpmath.pi / 5))
+    assert mpmath.nstr(t, 20) == "4.7894242309743877759"
+    assert "$T = 4.7894242309743877759$ s" in doc.entry("agm.text")
+
+
+# ----------------------------------------------------------------------------- every group
+def _choice_parents() -> set[str]:
+    """The keys the template shows that the catalogue only has as alternatives ``key.option``."""
+    import re
+    from importlib import resources
+
+    template = resources.files("pendulab.report").joinpath("report.typ").read_text()
+    catalogue = load_catalogue("en")
+    return {k for k in re.findall(r'T\("([^"]+)"\)', template) if k not in catalogue}
+
+
+def _alternatives(parents) -> set[str]:
+    catalogue = load_catalogue("en")
+    return {k for k in catalogue if k.rsplit(".", 1)[0] in parents}
+
+
+def _random_groups(n=32, seed=11):
+    import random
+
+    rng = random.Random(seed)
+    return [tuple(rng.randint(1, 99999) for _ in range(rng.randint(1, 4))) for _ in range(n)]
+
+
+#: Groups whose length is 1 m: every digit of the sum is 1 (or 0).
+SHORT_GROUPS = [(99999, 1), (1,), (100, 11), (55555, 55556)]
+
+
+@pytest.fixture(scope="module")
+def group_docs(tmp_path_factory):
+    """Sections 0 and 3 for 32 random groups and the l = 1 groups, en and pt alternately (no PDF)."""
+    from pendulab.report import document
+    from pendulab.report.builder import section_data
+
+    d = tmp_path_factory.mktemp("groups")
+    out = []
+    with pytest.MonkeyPatch.context() as mp:
+        mp.setattr(document.Doc, "figure", lambda self, name, paint, **size: self.figures.update({name: name}))
+        for i, students in enumerate(_random_groups() + SHORT_GROUPS):
+            lang = ("en", "pt")[i % 2]
+            out.append((students, lang, section_data(students, lang, d, only=["problem 3"])))
+    return out
+
+
+def test_every_group_problem3_matches_plain_python(group_docs):
+    import plain_pendulum as plain
+
+    from pendulab.report.markup import num
+
+    assert len(group_docs) >= 36
+    outcomes = set()
+    for students, lang, doc in group_docs:
+        text = plain.length_text(students)
+        assert doc.values["p3b.l"] == text
+        digits = str(sum(students)).replace("0", "")
+        assert doc.choices["p3b.len"] == ("p3b.len.one" if len(digits) == 1 else "p3b.len.many")
+        length = float(text)
+        exact = plain.agm7_period(length)
+        event = plain.first_event(length, 0.2, 4 * exact)
+        outcomes.add(event[0])
+        assert doc.choices["p3b.bracket"] == f"p3b.bracket.{event[0]}" == doc.choices["p3b.tmax"].replace("tmax", "bracket")
+        sentence = doc.entry("p3b.bracket")
+        if event[0] == "returns":
+            j = event[1]
+            assert f"t_{j} = {num(j * 0.2, 6)}" in sentence and f"t_{j + 1} = {num((j + 1) * 0.2, 6)}" in sentence
+            seen = max(exact, (j + 1) * 0.2)
+        else:
+            assert f"t = {num(event[1], 6)}" in sentence
+            seen = event[1]
+        # t_max: a multiple of h = 0.2 with the event in view and a quarter of it to spare.
+        t_max = float(doc.values["p3b.tmax"])
+        assert t_max >= 1.25 * seen - 1e-9 and t_max - 0.2 < 1.25 * seen
+        assert doc.values["p3b.tmax"] in doc.entry("p3b.tmax")
+        ref = plain.estimate(length, 1e-3, 2 * exact)
+        assert f"j = {ref['j']}" in doc.entry("p3d")
+        ratio = abs(ref["error_estimate"]) / abs(ref["cubic"] - exact)
+        assert doc.choices["p3d.verdict"] == ("p3d.verdict.negligible" if ratio < 1e-3 else "p3d.verdict.not_negligible")
+    assert outcomes == {"returns", "leaves"}
+
+
+def _forced(tmp_path, students, only, patches, lang):
+    from pendulab.report import document
+    from pendulab.report.builder import section_data
+
+    with pytest.MonkeyPatch.context() as mp:
+        mp.setattr(document.Doc, "figure", lambda self, name, paint, **size: self.figures.update({name: name}))
+        for target, name, value in patches:
+            mp.setattr(target, name, value)
+        return section_data(students, lang, tmp_path, only=only)
+
+
+def _forced_docs(tmp_path, lang):
+    """The branches no real group reaches, each forced by changing the threshold behind it."""
+    import functools
+
+    from pendulab import newton
+
+    docs = {
+        "given x0": _forced(tmp_path, EXAMPLE, ["problem 2"],
+                            [(problems, "problem2", functools.partial(problems.problem2, x0=1.0))], lang),
+        "every q_k": _forced(tmp_path, EXAMPLE, ["problem 2"], [(newton, "Q_RTOL", 1e9)], lang),
+        "no return": _forced(tmp_path, EXAMPLE, ["problem 3"], [(problems, "PLOT_SEARCH_PERIODS", 1.0)], lang),
+        "not negligible": _forced(tmp_path, EXAMPLE, ["problem 3"], [(problems, "NEGLIGIBLE_RATIO", 1e-20)], lang),
+        "within tolerance": _forced(tmp_path, EXAMPLE, ["problem 4"], [(problems, "PROBLEM4_TOLERANCE", 10.0)], lang),
+        "not converged": _forced(tmp_path, EXAMPLE, ["problem 5"], [(problems, "ROUNDING_FLOOR", -1.0)], lang),
+        "real": _forced(tmp_path, EXAMPLE, None, [], lang),
+    }
+    return docs
+
+
+@pytest.mark.parametrize("lang", ["en", "pt"])
+def test_every_catalogue_branch_is_taken_and_true(group_docs, tmp_path, lang):
+    forced = _forced_docs(tmp_path, lang)
+    # Each forced branch says what its data say.
+    assert forced["given x0"].choices["p2.start"] == "p2.start.given"
+    assert "1" == forced["given x0"].values["p2.x0"]
+    doc = forced["every q_k"]
+    assert doc.choices["p2c.shown"] == "p2c.shown.all" and len(doc.tables["p2c"]) == int(doc.values["p2.qlast"]) + 1
+    doc = forced["no return"]
+    assert doc.choices["p3b.bracket"] == "p3b.bracket.none"
+    assert doc.values["p3b.search"] in doc.entry("p3b.bracket")
+    doc = forced["not negligible"]
+    assert doc.choices["p3d.verdict"] == "p3d.verdict.not_negligible" and "10#super[−20]" in doc.entry("p3d.verdict")
+    doc = forced["within tolerance"]
+    assert doc.choices["p4d.ii"] == "p4d.ii.yes" and doc.choices["p4.alt"] == "p4.alt.yes"
+    assert "< 1 × 10#super[1]$" in doc.entry("p4d.ii")  # the threshold the data were compared with
+    doc = forced["not converged"]
+    assert doc.choices["p5.sub"] == "p5.sub.not_converged" and doc.values["p5.subn"] == "—"
+    # The real data's branches, with the numbers they claim.
+    real = forced["real"]
+    r2 = problems.problem2()
+    assert real.choices["p2.start"] == "p2.start.fourier" and real.choices["p2c.shown"] == "p2c.shown.cut"
+    assert len(real.tables["p2c"]) == r2.run.k_max + 1  # q_0 .. q_kmax, q_2 left out as the text says
+    assert real.choices["p4d.ii"] == "p4d.ii.no" and real.choices["p4.alt"] == "p4.alt.no"
+    assert real.choices["p5.sub"] == "p5.sub.converged"
+    # Every alternative of every choice the template makes was taken by some document.
+    taken = {c for docs in (forced.values(), [d for _, lg, d in group_docs]) for d in docs for c in d.choices.values()}
+    parents = _choice_parents()
+    assert parents >= {"p3b.len", "p3b.tmax", "p3b.bracket", "p3d.verdict", "p2.start", "p4d.ii", "p4.alt", "p5.sub"}
+    assert _alternatives(parents) <= taken
+    # And every entry of this language fills (no placeholder left without a value).
+    real.text()
+
+
+def test_problem4_601_points_beside(built):
+    text = " ".join(pdf_text(built["en"]).split())
+    alt = problems.problem4(t_max=6.0)
+    assert alt.points == 601
+    assert "601 points" in text
+    for c in alt.fit.coefficients:
+        assert f"{c:.10g}".replace("-", "-") in text

@@ -174,6 +174,9 @@ def _csv(key: AnswerKey) -> str:
     return buf.getvalue()
 
 
+_NAMES = {"gamma": "gamma", "a0": "a_0", "b0": "b_0", "a1": "a_1", "b1": "b_1", "a2": "a_2", "b2": "b_2"}
+
+
 def _pdf(key: AnswerKey) -> bytes:
     import tempfile
 
@@ -184,7 +187,7 @@ def _pdf(key: AnswerKey) -> bytes:
     for g in key.groups:
         p = g["plot"]
         shown = (f"[{num(p['bracket'][0], 4)}, {num(p['bracket'][1], 4)}]" if p["outcome"] == "returns"
-                 else f"leaves at {num(p['left_at'], 4)}" if p["outcome"] == "leaves" else "no return")
+                 else f"leaves at $t = {num(p['left_at'], 4)}$" if p["outcome"] == "leaves" else "no return")
         cells = [", ".join(map(str, g["students"])), g["length_text"], num(g["exact"], 12), shown]
         for e in g["estimates"]:
             cells += [num(e["cubic"], 10), sci(e["cubic_error"], 2)]
@@ -193,16 +196,17 @@ def _pdf(key: AnswerKey) -> bytes:
         rows.append(cells)
     c = key.common
     common = [
-        ["1(b)", f"g = {num(c['problem1']['g'], 10)}, |e_g| ≤ {num(c['problem1']['abs_error'], 4)}: "
-                 f"{c['problem1']['significant_digits']} digits, g ≈ {c['problem1']['g_text']}"],
-        ["2", f"α = {num(c['problem2']['alpha'], 15)} rad = {num(c['problem2']['alpha_degrees'], 13)}°, "
-              f"K = {num(c['problem2']['asymptotic_constant'], 10)}"],
-        ["4", f"{c['problem4']['points']} points, SSD = {sci(c['problem4']['ssd'], 6)}, max dev. = "
-              f"{sci(c['problem4']['max_deviation'], 4)}; "
-              + ", ".join(f"{n} = {num(x, 10)}" for n, x in zip(c['problem4']['names'], c['problem4']['coefficients']))],
-        ["5", f"T̂ = {num(c['problem5']['exact'], 15)}; Q = {num(c['problem5']['single'], 12)}; "
-              f"S₁₀ = {num(c['problem5']['composite10'], 12)}; rate at n = 10⁵: "
-              f"{fixed(c['problem5']['rows'][-1]['rate'], 4)}"],
+        ["1(b)", f"$g = {num(c['problem1']['g'], 10)}$, $|e_g| <= {num(c['problem1']['abs_error'], 4)}$: "
+                 f"{c['problem1']['significant_digits']} significant digits, $g approx {c['problem1']['g_text']}$"],
+        ["2", f"$alpha = {num(c['problem2']['alpha'], 15)}$ rad $= {num(c['problem2']['alpha_degrees'], 13)} degree$, "
+              f"$K_infinity = {num(c['problem2']['asymptotic_constant'], 10)}$"],
+        ["4", f"{c['problem4']['points']} points, $E = {sci(c['problem4']['ssd'], 6)}$, "
+              f"$max_j |z_(1,j) - tilde(phi)(t_j)| = {sci(c['problem4']['max_deviation'], 4)}$; "
+              + ", ".join(f"${_NAMES.get(n, n)} = {num(x, 10)}$"
+                          for n, x in zip(c['problem4']['names'], c['problem4']['coefficients']))],
+        ["5", f"$hat(T) = {num(c['problem5']['exact'], 15)}$; one application of (11): "
+              f"${num(c['problem5']['single'], 12)}$; $S_10$: ${num(c['problem5']['composite10'], 12)}$; "
+              f"rate at $n = {c['problem5']['rows'][-1]['n']}$: {fixed(c['problem5']['rows'][-1]['rate'], 4)}"],
     ]
     steps = [sci(e["step"], 1) for e in key.groups[0]["estimates"]]
     data = {"rows": rows, "common": common, "steps": steps, "count": len(rows)}

@@ -63,24 +63,26 @@ def new_doc(students: Sequence[int], lang: str, folder: Path) -> Doc:
     return doc
 
 
-def section_data(students: Sequence[int], lang: str, folder: Path, skip: Sequence[str] = ()) -> Doc:
-    """Run every section (but those named in ``skip``) for ``students``: the Doc, not typeset."""
+def section_data(students: Sequence[int], lang: str, folder: Path, only: Sequence[str] | None = None) -> Doc:
+    """Run the sections (those labelled in ``only``, default all) for ``students``: the Doc, not typeset."""
     doc = new_doc(tuple(students), _check_lang(lang), Path(folder))
     for label, section in sections.SECTIONS:
-        if label not in skip:
+        if only is None or label in only:
             section(doc, tuple(students))
     return doc
 
 
 def compile_pdf(doc: Doc, students: Sequence[int]) -> bytes:
     """Typeset ``doc``: its text filled, tables, figures and listings."""
+    index, blocks = doc.listings(sections.INDEX_ONLY)
     data = {
         "lang": doc.lang,
         "students": ", ".join(str(s) for s in students),
         "t": doc.text(),
         "tables": doc.tables,
         "figures": doc.figures,
-        "code": doc.listings(sections.INDEX_ONLY),
+        "index": index,
+        "code": blocks,
     }
     return typeset(doc.tmp, "report.typ", data)
 

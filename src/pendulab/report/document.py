@@ -94,6 +94,11 @@ class Doc:
             out[key] = out[chosen]
         return out
 
+    def entry(self, key: str) -> str:
+        """One entry with its placeholders filled (for a choice: the alternative taken)."""
+        chosen = self.choices.get(key, key)
+        return self._fill(chosen, self.word(chosen))
+
     def _fill(self, key: str, text: str) -> str:
         def repl(m: re.Match) -> str:
             name = m.group(1)
@@ -105,15 +110,30 @@ class Doc:
 
         return re.sub(r"\{([A-Za-z][A-Za-z0-9_.]*)\}", repl, text)
 
-    def listings(self, index_only: frozenset[str] = frozenset()) -> list[dict[str, str]]:
-        """Each program's name, ``file:line``, summary and source (``""`` for the names in ``index_only``)."""
-        out = []
+    def listings(self, index_only: frozenset[str] = frozenset()) -> tuple[list[dict[str, str]], list[dict[str, str]]]:
+        """The appendix: an index of every program, and the blocks of source to print.
+
+        Each index entry has the program's ``name``, ``where`` (``file:line``) and ``printed``
+        (``"no"`` for the names in ``index_only``). The constants of one module are printed
+        together, in the module's order, as one block.
+        """
+        index, blocks = [], []
+        constants: dict[str, list[tuple[int, str]]] = {}
         for p in self.programs:
             entry = program_source(p)
-            if entry["name"] in index_only:
-                entry["source"] = ""
-            out.append(entry)
-        return out
+            shown = entry["name"] not in index_only
+            index.append({"name": entry["name"], "where": entry["where"], "printed": "yes" if shown else "no"})
+            if not shown:
+                continue
+            if entry["kind"] == "constant":
+                module, line = entry["where"].split(":")
+                constants.setdefault(module, []).append((int(line), entry["source"]))
+            else:
+                blocks.append({"title": f"{entry['name']} ({entry['where']})", "source": entry["source"]})
+        for module, items in constants.items():
+            blocks.append({"title": f"constants of {module}",
+                           "source": "\n".join(src for _, src in sorted(set(items)))})
+        return index, blocks
 
 
 # ----------------------------------------------------------------------------- listings

@@ -276,6 +276,7 @@ def problem4(doc: Doc, students: Sequence[int]) -> None:
         "p4.ssd": sci(f.ssd, 6), "p4.maxdev": sci(f.max_deviation, 4), "p4.argmax": num(f.argmax_deviation, 6),
         "p4.omega": num(2 * math.pi / r.period, 6), "p4.exactdev": sci(r.exact_deviation, 3),
         "p4.exactat": num(r.exact_deviation_at, 6), "p4.taylor": sci(r.taylor_error, 3),
+        "p4.tol": sci(r.tolerance, 1),
         "p4.alt.tmax": num(alt.t_max, 6), "p4.alt.points": integer(alt.points), "p4.alt.n": integer(alt.points - 1),
         "p4.alt.ssd": sci(alt.fit.ssd, 6), "p4.alt.maxdev": sci(alt.fit.max_deviation, 4),
         "p4.alt.argmax": num(alt.fit.argmax_deviation, 6), "p4.alt.exactdev": sci(alt.exact_deviation, 3),
