@@ -49,7 +49,7 @@ def first_event(length: float, h: float, t_end: float):
         if abs(z1) > math.pi:
             return "leaves", k * h
         if k >= 1:
-            (a1, a2), (b1, b2) = points[-2], points[-1]
+            (_, a2), (b1, b2) = points[-2], points[-1]
             if a2 > 0 >= b2 and b1 > 0:
                 j = k - 1
                 for _ in range(2):  # two more points after j + 1

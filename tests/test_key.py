@@ -10,12 +10,12 @@ import csv
 import io
 import json
 
-import plain_pendulum as plain
 import pypdf
 import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
+import plain_pendulum as plain
 from pendulab.cli import main
 from pendulab.errors import InputError
 from pendulab.key import answer_key, parse_groups

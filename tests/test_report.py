@@ -22,7 +22,7 @@ OTHER = (81234, 90876)  # sum 172110 -> digits 1,7,2,1,1
 SHORT = (99999, 1)  # sum 100000 -> l = 1: the h = 0.2 simulation goes over the top
 
 
-@functools.lru_cache(maxsize=None)
+@functools.cache
 def pdf_text(path) -> str:
     """The PDF's text (extracted once per file: pypdf takes seconds on the appendix's code)."""
     reader = pypdf.PdfReader(str(path))
@@ -311,12 +311,11 @@ def group_docs(tmp_path_factory):
 
 def test_every_group_problem3_matches_plain_python(group_docs):
     import plain_pendulum as plain
-
     from pendulab.report.markup import num
 
     assert len(group_docs) >= 36
     outcomes = set()
-    for students, lang, doc in group_docs:
+    for students, _lang, doc in group_docs:
         text = plain.length_text(students)
         assert doc.values["p3b.l"] == text
         digits = str(sum(students)).replace("0", "")
@@ -380,7 +379,7 @@ def test_every_catalogue_branch_is_taken_and_true(group_docs, tmp_path, lang):
     forced = _forced_docs(tmp_path, lang)
     # Each forced branch says what its data say.
     assert forced["given x0"].choices["p2.start"] == "p2.start.given"
-    assert "1" == forced["given x0"].values["p2.x0"]
+    assert forced["given x0"].values["p2.x0"] == "1"
     doc = forced["every q_k"]
     assert doc.choices["p2c.shown"] == "p2c.shown.all" and len(doc.tables["p2c"]) == int(doc.values["p2.qlast"]) + 1
     doc = forced["no return"]

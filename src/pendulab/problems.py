@@ -6,8 +6,9 @@ Defaults are the canonical inputs of :mod:`pendulab.cases`.
 from __future__ import annotations
 
 import math
+from collections.abc import Sequence
 from dataclasses import dataclass
-from typing import TYPE_CHECKING, Sequence
+from typing import TYPE_CHECKING
 
 from . import cases
 from .crossing import PeriodEstimate, estimate_period, observed_orders
@@ -240,14 +241,14 @@ class Problem2(Result):
         Why the grid check of the conditions is a proof for this ``f``.
     """
 
-    equation: "PeriodEquation"
-    interval: "IntervalCheck"
+    equation: PeriodEquation
+    interval: IntervalCheck
     interval_degrees: tuple[float, float]
     x0: float
     x0_rule: str
     x0_from_fourier: bool
     x0_in_interval: bool
-    run: "NewtonResult"
+    run: NewtonResult
     alpha: float
     alpha_degrees: float
     closed_form: float
@@ -372,17 +373,17 @@ class Problem4(Result):
     t_max: float
     t_max_rule: str
     data: Trajectory
-    last_points: "np.ndarray"
+    last_points: np.ndarray
     objective: str
-    fit: "LeastSquaresFit"
+    fit: LeastSquaresFit
     tolerance: float
     below_tolerance: bool
     exact_deviation: float
     exact_deviation_at: float
     taylor_error: float
-    curve_t: "np.ndarray"
-    curve_phi: "np.ndarray"
-    curve_exact: "np.ndarray"
+    curve_t: np.ndarray
+    curve_phi: np.ndarray
+    curve_exact: np.ndarray
     answer: str
 
     @property
@@ -486,7 +487,7 @@ class Problem5(Result):
     amplitude: float
     g: float
     exact: float
-    rule: "Rule"
+    rule: Rule
     answer_5a: str
     single: float
     composite10: float

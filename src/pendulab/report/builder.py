@@ -12,8 +12,8 @@ from __future__ import annotations
 import os
 import sys
 import tempfile
+from collections.abc import Sequence
 from pathlib import Path
-from typing import Sequence
 
 from . import sections
 from .document import LANGUAGES, Doc, _check_lang, load_catalogue

@@ -11,10 +11,11 @@ import json
 import re
 import sys
 import textwrap
+from collections.abc import Callable
 from dataclasses import dataclass, field
 from importlib import resources
 from pathlib import Path
-from typing import Any, Callable
+from typing import Any
 
 from ..errors import InputError
 
@@ -52,7 +53,7 @@ class Doc:
     tmp: Path
     values: dict[str, str] = field(default_factory=dict)
     choices: dict[str, str] = field(default_factory=dict)
-    tables: dict[str, list[list[str]]] = field(default_factory=dict)
+    tables: dict[str, Any] = field(default_factory=dict)
     figures: dict[str, str] = field(default_factory=dict)
     programs: list[Callable | Constant] = field(default_factory=list)
 
@@ -150,14 +151,16 @@ def _function_source(func: Callable) -> dict[str, str]:
     node = ast.parse(src).body[0]
     body = getattr(node, "body", [])
     text = src.splitlines()
-    if body and isinstance(body[0], ast.Expr) and isinstance(getattr(body[0].value, "value", None), str):
-        d0, d1 = body[0].lineno - 1, body[0].end_lineno
+    first_stmt = body[0] if body else None
+    if (isinstance(first_stmt, ast.Expr) and isinstance(first_stmt.value, ast.Constant)
+            and isinstance(first_stmt.value.value, str)):
+        d0, d1 = first_stmt.lineno - 1, first_stmt.end_lineno
         indent = text[d0][: len(text[d0]) - len(text[d0].lstrip())]
-        doc = _trim_docstring(inspect.cleandoc(body[0].value.value))
+        doc = _trim_docstring(inspect.cleandoc(first_stmt.value.value))
         quoted = ('"""' + doc + '"""').splitlines()
         text = text[:d0] + [indent + q if q else "" for q in quoted] + text[d1:]
     module = func.__module__.removeprefix("pendulab.")
-    path = Path(inspect.getsourcefile(func)).name
+    path = Path(inspect.getsourcefile(func) or "?").name
     text = [line for line in text if line.strip()]  # blank lines: paper, not program
     return {"name": f"{module}.{func.__qualname__}", "where": f"{path}:{first}", "source": "\n".join(text),
             "kind": "function"}
@@ -174,7 +177,7 @@ def _constant_source(c: Constant) -> dict[str, str]:
             start = node.lineno - 1
             while start > 0 and lines[start - 1].lstrip().startswith("#"):
                 start -= 1
-            path = Path(inspect.getsourcefile(module)).name
+            path = Path(inspect.getsourcefile(module) or "?").name
             return {"name": f"{c.module.removeprefix('pendulab.')}.{c.name}", "where": f"{path}:{node.lineno}",
                     "source": "\n".join(lines[start:node.end_lineno]), "kind": "constant"}
     raise LookupError(f"{c.module} assigns no constant {c.name}")

@@ -6,14 +6,15 @@ Every figure is a :class:`matplotlib.figure.Figure` made and saved inside
 """
 from __future__ import annotations
 
+from collections.abc import Callable
 from pathlib import Path
-from typing import Callable
+from typing import Any
 
 #: One column of the report (cm -> inch): two figures sit side by side.
 WIDTH = 8.4 / 2.54
 HEIGHT = 5.6 / 2.54
 
-STYLE = {
+STYLE: Any = {
     "font.size": 8,
     "axes.titlesize": 8,
     "axes.labelsize": 8,

@@ -9,7 +9,7 @@ source the appendix prints.
 from __future__ import annotations
 
 import math
-from typing import Sequence
+from collections.abc import Sequence
 
 from .document import Constant, Doc
 from .markup import fixed, integer, num, sci, sci_mp
@@ -131,7 +131,7 @@ def problem2(doc: Doc, students: Sequence[int]) -> None:
         "p2.qtol": f"{newton.Q_RTOL:.0%}",
         "p2.kmax": "—" if run.k_max is None else integer(run.k_max),
         "p2.C": num(const, 10), "p2.qkmax": "—" if qk is None else num(qk, 10),
-        "p2.qrel": "—" if qk is None else sci(abs(qk - const) / const, 2),
+        "p2.qrel": "—" if qk is None or const is None else sci(abs(qk - const) / const, 2),
         "p2.qlast": integer(len(run.q) - 1),
     })
     doc.choose("p2.start", "fourier" if r.x0_from_fourier else "given")
@@ -182,10 +182,12 @@ def problem3(doc: Doc, students: Sequence[int]) -> None:
     doc.choose("p3b.bracket", r.plot_outcome)
     if r.plot_outcome == problems.RETURNS:
         est = r.plot_estimate
+        assert est is not None
         doc.set(**{"p3b.tj": num(est.bracket[0], 6), "p3b.tj1": num(est.bracket[1], 6),
                    "p3b.j": integer(est.j), "p3b.j1": integer(est.j + 1),
                    "p3b.diff": num(est.bracket[0] - r.exact, 3)})
     elif r.plot_outcome == problems.LEAVES:
+        assert r.plot_left_at is not None
         doc.set(**{"p3b.left": num(r.plot_left_at, 6), "p3b.ratio": num(r.plot_left_at / r.exact, 3)})
     doc.figure("p3b_time", lambda ax: time_series(ax, r.plot, title=False))
     doc.figure("p3b_phase", lambda ax: phase_portrait(ax, r.plot))
@@ -201,7 +203,7 @@ def problem3(doc: Doc, students: Sequence[int]) -> None:
     doc.tables["p3c"] = rows
     last = r.estimates[-1]
     orders = [o for o in r.linear_orders if o is not None]
-    doc.set(**{"p3c.order": fixed(r.linear_orders[-1], 2), "p3c.error": sci(abs(last.linear - r.exact), 2),
+    doc.set(**{"p3c.order": fixed(orders[-1], 2), "p3c.error": sci(abs(last.linear - r.exact), 2),
                "p3c.h": sci(last.step, 1), "p3c.omin": fixed(min(orders), 2), "p3c.omax": fixed(max(orders), 2)})
 
     # 3(d): the inverse cubic interpolation with h = 1e-3.
@@ -260,7 +262,7 @@ def problem4(doc: Doc, students: Sequence[int]) -> None:
                 *_c("cases", "PROBLEM4", "PROBLEM4_STEP", "PROBLEM4_ROUND"))
     n = r.points - 1
     doc.tables["p4a"] = [[integer(n - 9 + k), fixed(t, 2), num(z, 12)] for k, (t, z) in enumerate(r.last_points)]
-    dec = f.decimals
+    dec = f.decimals if f.decimals is not None else 15
     doc.tables["p4c_matrix"] = [[fixed(x, dec) for x in row] for row in f.normal_matrix]
     doc.tables["p4c_rhs"] = [fixed(x, dec) for x in f.normal_rhs]
     doc.tables["p4d"] = [[P4_NAMES.get(nm, nm), num(c, 10), num(c_ref, 10), num(c_alt, 10)]
