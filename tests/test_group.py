@@ -1,5 +1,9 @@
 """The group's pendulum length, problem 3(b) and its footnote 4."""
+import math
+
 import pytest
+from hypothesis import given, settings
+from hypothesis import strategies as st
 
 from pendulab.errors import InputError
 from pendulab.group import group_length
@@ -25,10 +29,22 @@ def test_hand_computed_cases(numbers, text):
     assert group_length(numbers).text == text
 
 
-def test_half_away_from_zero():
-    # digits "2" -> 2 exactly; sum 11 -> sqrt(1) = 1; the rounding direction is visible
-    # on sqrt(2*5) = 3.16227766016838...: 10 decimals -> 3.1622776602 (up).
-    assert group_length([25]).text == "3.1622776602"
+@settings(max_examples=200, deadline=None)
+@given(st.lists(st.integers(0, 10**7), min_size=1, max_size=6).filter(lambda ns: str(sum(ns)).strip("0")))
+def test_length_is_the_correctly_rounded_geometric_mean(numbers):
+    """Checked in integers only: l = L / 10^10 is the rounding of the k-th root of P iff
+    (2L - 1)^k < P (2 10^10)^k < (2L + 1)^k. The k-th root of an integer is an integer or
+    irrational, so it is never half-way between two 10-decimal numbers: no tie to break,
+    and the rule's "half away from zero" never decides."""
+    res = group_length(numbers)
+    digits = [int(d) for d in str(sum(numbers)) if d != "0"]
+    assert res.total == sum(numbers) and res.digits == "".join(map(str, digits))
+    whole, frac = res.text.split(".")
+    assert len(frac) == 10
+    big = int(whole + frac)
+    k, prod = len(digits), math.prod(digits)
+    assert (2 * big - 1) ** k < prod * (2 * 10**10) ** k < (2 * big + 1) ** k
+    assert res.length == float(res.text)
 
 
 @pytest.mark.parametrize("numbers", [[], [0], [0, 0], [-5], [1.5]])

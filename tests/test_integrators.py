@@ -76,7 +76,7 @@ def test_measured_order(method, order, steps):
     assert abs(slope - order) < 0.2, (method, slope)
 
 
-def test_rk4_against_scipy_rk45_reference():
+def test_rk4_against_scipy_dop853_reference():
     # Cross-check with scipy's solve_ivp (DOP853, tight tolerances) rather than our exact motion.
     from scipy.integrate import solve_ivp
 

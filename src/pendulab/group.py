@@ -2,7 +2,9 @@
 
 Add the student numbers, delete every zero digit of the sum, and take the geometric
 mean of the remaining digits, rounded half away from zero to 10 decimals
-(spec, problem 3(b) and its footnote 4: 262, 407, 634 give m = 133, l = 2.0800838231).
+(the coursework's problem 3(b) and its footnote 4: 262, 407, 634 give m = 133,
+l = 2.0800838231). The k-th root of an integer is an integer or irrational, so the rounding
+never meets a tie.
 """
 from __future__ import annotations
 
