@@ -154,8 +154,8 @@ def exact_motion(length: Any, amplitude: Any, t: Any, g: Any = G) -> ExactMotion
     return ExactMotion(t, theta, omega, length, alpha, g)
 
 
-#: The constant of :func:`exact_motion_error_bound`: measured errors reach 2.2 (theta) and
-#: 1.2 (theta'), over 2.5 periods and at 1000 periods, ``alpha`` up to ``pi - 1e-12``.
+#: The constant of :func:`exact_motion_error_bound`: measured errors reach 2.6 (theta) and
+#: 1.4 (theta'), over 2.5 periods and at 1000 periods, ``alpha`` up to ``pi - 1e-12``.
 ERROR_BOUND_FACTOR = 4.0
 
 
@@ -171,7 +171,7 @@ def exact_motion_error_bound(length: Any, amplitude: Any, t: Any, g: Any = G) ->
     ``|d theta/du| = 2k |cn| <= 2``, ``|d theta'/du| <= 2 k omega0``: so the error grows
     linearly with ``t``, and the Jacobi functions add a few ulps. The factor 4 is
     measured, not proved: against ``mpmath.ellipfun`` at 60 digits the largest ratio of
-    error to ``eps (omega0 |t| + K)`` is 2.2 for theta and 1.2 for theta', densely over 2.5
+    error to ``eps (omega0 |t| + K)`` is 2.6 for theta and 1.4 for theta', densely over 2.5
     periods and around ``t = 1000 T``, for amplitudes from 1e-3 to ``pi - 1e-12``
     (``tests/test_motion.py``, ``benchmarks/accuracy_claims.py``).
     """
