@@ -13,11 +13,9 @@ Run: .venv/bin/python benchmarks/bench_methods.py [--target 1e-13] [--dense]
 """
 from __future__ import annotations
 
+import argparse
 import math
 import time
-
-
-import argparse
 
 from pendulab.crossing import estimate_period
 from pendulab.period import period_mp
@@ -53,7 +51,7 @@ def method_row(method: str):
         if all(ok):
             k = i - 2
             h = GRID[k]
-            secs = best_time(lambda: estimate_period(LENGTH, ALPHA, h, method=method))
+            secs = best_time(lambda h=h: estimate_period(LENGTH, ALPHA, h, method=method))
             return h, errs[k][1], errs[k][0], secs
     return None
 
@@ -74,7 +72,7 @@ def dop853_row():
     top.terminal, top.direction = 2, -1
     for tol in [m * 10.0**-k for k in range(3, 15) for m in (3, 1)]:
 
-        def run():
+        def run(tol=tol):
             return solve_ivp(rhs, (0, 1.5 * exact), [ALPHA, 0.0], method="DOP853", rtol=tol, atol=tol, events=top)
 
         sol = run()

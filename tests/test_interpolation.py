@@ -1,4 +1,7 @@
 """Newton's divided differences and the inverse cubic, against scipy and a known function."""
+import math
+from fractions import Fraction
+
 import numpy as np
 import pytest
 from scipy.interpolate import BarycentricInterpolator
@@ -40,8 +43,6 @@ def test_repeated_nodes_are_rejected():
 
 
 # ------------------------------------------------------------------ scaling and the rounding level
-from fractions import Fraction  # noqa: E402
-import math  # noqa: E402
 
 
 def exact_error_estimate(z2, t):
@@ -90,3 +91,20 @@ def test_error_estimate_below_rounding_level_is_flagged():
     exact_t = [(est.j - 2 + k) * Fraction(est.step) for k in range(5)]
     exact = exact_error_estimate([*ip.z2, ip.fifth[0]], [*exact_t[1:], exact_t[0]])
     assert ip.error_estimate_resolved and ip.error_estimate == pytest.approx(float(exact), rel=1e-6)
+
+
+from hypothesis import given, settings  # noqa: E402
+from hypothesis import strategies as st  # noqa: E402
+
+
+@settings(max_examples=100, deadline=None)
+@given(e=st.integers(-1000, 1000), seed=st.integers(0, 2**32 - 1))
+def test_scaling_by_any_power_of_two_keeps_the_bits(e, seed):
+    rng = np.random.default_rng(seed)
+    z = np.sort(rng.uniform(-1, 1, 5))[::-1]
+    if len(set(z)) < 5:
+        return
+    t = 5.0 + np.arcsin(z)
+    ref = inverse_cubic(z[1:], t[1:], (z[0], t[0]))
+    got = inverse_cubic(np.ldexp(z[1:], e), t[1:], (math.ldexp(z[0], e), t[0]))
+    assert (got.value, got.error_estimate, got.rounding_level) == (ref.value, ref.error_estimate, ref.rounding_level)

@@ -119,3 +119,31 @@ def test_cli_period_digits_near_pi(cli):
     with mpmath.workdps(80):
         assert f"T  = {mpmath.nstr(ref, 30, strip_zeros=False)} s" in res.out
     assert_one_line_error(cli("period", "-l", "1", "-a", "1pi", "--digits", "5"), "amplitude")
+
+
+from hypothesis import given, settings  # noqa: E402
+from hypothesis import strategies as st  # noqa: E402
+
+
+@settings(max_examples=60, deadline=None)
+@given(
+    num=st.integers(0, 10**15 - 1),
+    length=st.fractions(min_value=Fraction(1, 1000), max_value=1000, max_denominator=10**6),
+    g=st.fractions(min_value=Fraction(1, 10), max_value=100, max_denominator=10**4),
+)
+def test_ball_always_contains_the_period(num, length, g):
+    # Amplitudes c pi with c = num/10^15 in [0, 1): up to within 1e-15 pi of pi.
+    coef = Fraction(num, 10**15)
+    lt, gt = f"{length.numerator}/{length.denominator}", f"{g.numerator}/{g.denominator}"
+    ball = period_ball(lt, f"{coef.numerator}pi/{coef.denominator}", gt, prec=96)
+    with mpmath.workdps(60):
+        kp = mpmath.sin(mpmath.pi * (1 - mpmath.mpf(coef.numerator) / coef.denominator) / 2)
+        ref = 4 * mpmath.sqrt((mpmath.mpf(length.numerator) / length.denominator)
+                              / (mpmath.mpf(g.numerator) / g.denominator)) * mpmath.ellipk(1 - kp * kp)
+        text = mpmath.nstr(ref, 50)
+    old = ctx.prec
+    ctx.prec = 200
+    try:
+        assert ball.contains(arb(text))  # ref is within 1e-50 of the period; the ball is 1e-28 wide
+    finally:
+        ctx.prec = old

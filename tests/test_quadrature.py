@@ -252,3 +252,15 @@ def test_composite_graded_on_a_peak_of_known_integral():
 def test_graded_needs_the_substitution():
     with pytest.raises(InputError, match="graded"):
         quadrature_period(L, ALPHA, 10, graded=True)
+
+
+from hypothesis import given, settings  # noqa: E402
+from hypothesis import strategies as st  # noqa: E402
+
+
+@settings(max_examples=60, deadline=None)
+@given(alpha=st.floats(5e-324, 1e-9), n=st.sampled_from([1, 10, 100]))
+def test_tiny_amplitudes_give_the_small_amplitude_sum(alpha, n):
+    # For alpha < 1e-9, sinc(alpha y/2) is 1 to rounding: S_n no longer depends on alpha,
+    # down to the smallest subnormal (it was inf below about 1e-154).
+    assert quadrature_period(1.0, alpha, n) == pytest.approx(quadrature_period(1.0, 1e-9, n), rel=4e-16)

@@ -17,8 +17,8 @@ import numpy as np
 
 from . import _validate as v
 from .cases import G
-from .errors import InputError, LeftOscillationError, NoReturnError, NumericalError
 from .dense import dense_crossing
+from .errors import InputError, LeftOscillationError, NoReturnError, NumericalError
 from .interpolation import InverseInterpolation, inverse_cubic
 from .period import agm_period
 from .results import Result

@@ -123,4 +123,4 @@ def inverse_cubic(z2: np.ndarray, t: np.ndarray, fifth: tuple[float, float]) -> 
     with np.errstate(over="ignore"):
         unscaled = np.ldexp(coef, -e * np.arange(4))  # t[z2_0..z2_k] = t[x_0..x_k] 2^(-e k)
         fourth = float(np.ldexp(five[-1], -4 * e))
-    return InverseInterpolation(z2, t, unscaled, value, (float(fifth[0]), float(fifth[1])), fourth, error, rounding)
+    return InverseInterpolation(z2, t, unscaled, float(value), (float(fifth[0]), float(fifth[1])), fourth, error, rounding)
