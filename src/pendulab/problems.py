@@ -220,10 +220,9 @@ class Problem2(Result):
         ``[a, b]`` in degrees.
     x0 : float
         The starting value (rad).
-    x0_rule : str
-        Why this ``x0``.
     x0_from_fourier : bool
-        ``x0`` was chosen by Fourier's condition (not given by the caller).
+        ``x0`` was chosen by Fourier's condition (not given by the caller); ``x0_rule``
+        says so in words.
     x0_in_interval : bool
     run : NewtonResult
         Iterates, corrections, ``q_k``, ``k_max``, asymptotic constant, error estimate.
@@ -237,15 +236,16 @@ class Problem2(Result):
         (``step``, ``width``).
     ratios : tuple of float
         ``|x[k+2]-x[k+1]| / |x[k+1]-x[k]|`` -> 0: convergence is superlinear (2(b)).
-    justification : str
-        Why the grid check of the conditions is a proof for this ``f``.
+    curvature_positive : bool
+        ``f'' >= 0`` on ``[a, b]`` (the interval lies below ``pi/2``; else above it, as the
+        conditions of 2(a) require a constant sign); ``justification`` says
+        in words why the grid check of the conditions is then a proof for this ``f``.
     """
 
     equation: PeriodEquation
     interval: IntervalCheck
     interval_degrees: tuple[float, float]
     x0: float
-    x0_rule: str
     x0_from_fourier: bool
     x0_in_interval: bool
     run: NewtonResult
@@ -254,7 +254,21 @@ class Problem2(Result):
     closed_form: float
     condition_values: dict[str, dict[str, float]]
     ratios: tuple[float | None, ...]
-    justification: str
+    curvature_positive: bool
+
+    @property
+    def x0_rule(self) -> str:
+        """Why this ``x0``, in words (``"given"`` when the caller chose it)."""
+        from .words import sentence
+
+        return sentence("p2.x0_rule") if self.x0_from_fourier else "given"
+
+    @property
+    def justification(self) -> str:
+        """Why the grid check of the conditions of 2(a) is a proof for this ``f``, in words."""
+        from .words import sentence
+
+        return sentence("p2.justification." + ("positive" if self.curvature_positive else "negative"))
 
     @property
     def asymptotic_constant(self) -> float | None:
@@ -284,12 +298,7 @@ def problem2(
     if x0 is not None and not 0 < v.finite("x0", x0) < math.pi:
         raise InputError("x0", x0, "an angle in (0, pi) rad, i.e. 0 < x0 < 180deg")
     chk = eq.interval()
-    if x0 is None:
-        start = eq.fourier_start(chk)
-        rule = "the end of [a, b] where f(x0) f''(x0) > 0 (Fourier): monotone convergence"
-    else:
-        start = float(x0)
-        rule = "given"
+    start = eq.fourier_start(chk) if x0 is None else float(x0)
     try:
         run = eq.newton(start)
     except NumericalError as exc:
@@ -299,13 +308,11 @@ def problem2(
     ratios = tuple(d[k + 1] / d[k] if d[k] > 0 else None for k in range(len(d) - 1))
     a_deg = round(math.degrees(chk.a), 9)
     b_deg = round(math.degrees(chk.b), 9)
-    sign = "positive" if chk.b <= math.pi / 2 else "negative"
     return Problem2(
         equation=eq,
         interval=chk,
         interval_degrees=(a_deg, b_deg),
         x0=start,
-        x0_rule=rule,
         x0_from_fourier=x0 is None,
         x0_in_interval=chk.a <= start <= chk.b,
         run=run,
@@ -314,11 +321,7 @@ def problem2(
         closed_form=eq.closed_form(),
         condition_values={key: dict(c.values) for key, c in zip(CONDITION_KEYS, chk.conditions)},
         ratios=ratios,
-        justification=(
-            "f'(alpha) = (2 pi/p) sin(alpha)/8 > 0 on (0, pi) and f''(alpha) = (2 pi/p) cos(alpha)/8 is "
-            f"{sign} on [a, b], which lies on one side of pi/2; f is monotone, so the sign change makes the "
-            "zero unique; with the two Newton steps from the ends inside [a, b], every x0 in [a, b] converges."
-        ),
+        curvature_positive=chk.conditions[2].values["min"] >= 0,  # f'' = (2 pi/p) cos(alpha)/8 on the grid
     )
 
 
@@ -362,8 +365,6 @@ class Problem4(Result):
         ``max_j |z1_j - theta(t_j)|``: the data's own error (Taylor method).
     curve_t, curve_phi, curve_exact : ndarray
         ``phi~`` and the exact ``theta`` on the fine grid (20 points per step), for plots.
-    answer : str
-        4(d)(ii) in words.
     """
 
     length: float
@@ -384,7 +385,14 @@ class Problem4(Result):
     curve_t: np.ndarray
     curve_phi: np.ndarray
     curve_exact: np.ndarray
-    answer: str
+
+    @property
+    def answer(self) -> str:
+        """4(d)(ii) in words."""
+        from .words import sentence
+
+        return sentence("p4.answer." + ("yes" if self.below_tolerance else "no"), deviation=self.fit.max_deviation,
+                        at=self.fit.argmax_deviation, tolerance=self.tolerance, exact=self.exact_deviation)
 
     @property
     def points(self) -> int:
@@ -421,12 +429,6 @@ def problem4(
     j = int(np.argmax(dev))
     taylor_err = float(np.max(np.abs(exact_motion(length, amplitude, data.t, g).theta - data.theta)))
     below = fit.max_deviation < PROBLEM4_TOLERANCE
-    answer = (
-        f"{'Yes' if below else 'No'}: the largest absolute deviation at the data points is "
-        f"{fit.max_deviation:.3e} (at t = {fit.argmax_deviation:g}), "
-        f"{'below' if below else 'above'} 1e-5. Between the data points, against the exact motion, "
-        f"it is {float(dev[j]):.3e}."
-    )
     return Problem4(
         length=float(length),
         amplitude=float(amplitude),
@@ -446,7 +448,6 @@ def problem4(
         curve_t=fine,
         curve_phi=curve_phi,
         curve_exact=curve_exact,
-        answer=answer,
     )
 
 
@@ -468,15 +469,12 @@ class Problem5(Result):
         ``T^`` of (8), 7 iterations: the reference of the errors.
     rule : Rule
         Rule (11) (3-point Gauss-Legendre, checked: weights sum 2, degree 5).
-    answer_5a : str
-        Why the trapezoidal and Simpson rules cannot be applied to (1).
     single : float
         5(b): one application of (11) on ``[0, alpha]``.
     composite10 : float
         5(c): ``S_10``.
     rows : tuple of QuadratureRow
         5(d): ``n``, period, error, observed rate; with the substitution's columns.
-    rate_explanation : str
     rounding_floor : float
         ``64 u T^``: an error below it is rounding, not truncation.
     substitution_converged_n : int or None
@@ -488,13 +486,25 @@ class Problem5(Result):
     g: float
     exact: float
     rule: Rule
-    answer_5a: str
     single: float
     composite10: float
     rows: tuple
-    rate_explanation: str
     rounding_floor: float
     substitution_converged_n: int | None
+
+    @property
+    def answer_5a(self) -> str:
+        """5(a) in words: why the trapezoidal and Simpson rules cannot be applied to (1)."""
+        from .words import sentence
+
+        return sentence("p5.answer_5a")
+
+    @property
+    def rate_explanation(self) -> str:
+        """5(d) in words: why the error of (11) on (1) falls like ``n^(-1/2)``."""
+        from .words import sentence
+
+        return sentence("p5.rate")
 
 
 def problem5(
@@ -505,7 +515,7 @@ def problem5(
     g: float = cases.G,
 ) -> Problem5:
     """Problem 5: ``T`` from (1) by rule (11) on 1, 10, ..., 10^5 subintervals, errors against (8)."""
-    from .quadrature import ANSWER_5A, GAUSS3, convergence_table, quadrature_period
+    from .quadrature import GAUSS3, convergence_table, quadrature_period
 
     exact = agm_period(length, amplitude, g, iterations=7)
     rows = convergence_table(length, amplitude, ns, exact, g, substitution=substitution)
@@ -518,17 +528,9 @@ def problem5(
         g=float(g),
         exact=exact,
         rule=GAUSS3,
-        answer_5a=ANSWER_5A,
         single=quadrature_period(length, amplitude, 1, g),
         composite10=quadrature_period(length, amplitude, 10, g),
         rows=tuple(rows),
-        rate_explanation=(
-            "The integrand behaves like (sin(alpha) (alpha - theta))^(-1/2) near theta = alpha: the last "
-            "subinterval of width h holds about 2 sqrt(h/sin(alpha)) of the integral, which the rule misses "
-            "by a fixed fraction, so the error falls like n^(-1/2) (observed rate 0.5), not like n^(-6). "
-            "After sin(theta/2) = sin(alpha/2) sin(phi) the integrand is analytic and the same rule "
-            "converges geometrically fast, down to rounding level."
-        ),
         rounding_floor=floor,
         substitution_converged_n=converged,
     )

@@ -325,14 +325,3 @@ def convergence_table(length, amplitude, ns, exact: float, g=G, substitution: bo
     else:
         sp = se = sr = [None] * len(ns)
     return [QuadratureRow(*row) for row in zip(ns, periods, errors, rates, sp, se, sr)]
-
-
-#: 5(a), in words.
-ANSWER_5A = (
-    "No. The trapezoidal and Simpson rules are closed: they evaluate the integrand at both "
-    "ends of [0, alpha], and at theta = alpha it is 1/sqrt(cos(alpha) - cos(alpha)) = 1/0, "
-    "infinite. They cannot be applied to (1) as it stands (only after removing the singularity, "
-    "e.g. by the substitution sin(theta/2) = sin(alpha/2) sin(phi)). Rule (11) is open (Gauss "
-    "nodes lie inside the interval), so it can be applied, but the singularity limits its "
-    "convergence to O(n^(-1/2))."
-)
