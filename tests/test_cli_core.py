@@ -116,8 +116,9 @@ def test_length(cli):
         (["estimate", "--t-max", "3"], ["does not return", "--t-max"]),
         (["estimate", "-a", "3", "--step", "0.5"], ["over the top"]),
         (["estimate", "-a", "0"], ["--amplitude", "0"]),
-        (["length", "0"], ["--students", "non-zero digit"]),
-        (["length", "12a"], ["--students", "12a"]),
+        (["length", "0"], ["NUMBERS", "positive integers"]),
+        (["length", "12a"], ["NUMBERS", "12a"]),
+        (["length", "1,,2"], ["NUMBERS", "empty item"]),
         (["simulate", "--plot", "/no/such/dir/f.png"], ["--plot", "/no/such/dir"]),
     ],
 )

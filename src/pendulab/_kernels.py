@@ -9,10 +9,10 @@ import math
 import numpy as np
 from numba import njit, prange
 
-#: Method codes understood by :func:`step`.
-TAYLOR2, RK4, VERLET, TAYLOR = 0, 1, 2, 3
-#: The largest order of the Taylor method of any order (size of its local arrays).
-MAX_TAYLOR_ORDER = 30
+from .methods import MAX_TAYLOR_ORDER, Kernel, Status
+
+#: Method codes understood by :func:`step` (the registry's, as plain ints for numba).
+TAYLOR2, RK4, VERLET, TAYLOR = (int(k) for k in (Kernel.TAYLOR2, Kernel.RK4, Kernel.VERLET, Kernel.TAYLOR))
 
 
 @njit(cache=True, nogil=True, inline="always")
@@ -143,8 +143,10 @@ def trajectory(method, order, alpha, c, h, n):
     return z1, z2
 
 
-#: Status codes of :func:`first_return`.
-FOUND, NO_RETURN, LEFT_OSCILLATION, TOO_EARLY = 0, 1, 2, 3
+#: Status codes of :func:`first_return` (:class:`pendulab.methods.Status`, as plain ints).
+FOUND, NO_RETURN, LEFT_OSCILLATION, TOO_EARLY = (
+    int(s) for s in (Status.FOUND, Status.NO_RETURN, Status.LEFT_OSCILLATION, Status.TOO_EARLY)
+)
 
 
 @njit(cache=True, nogil=True)

@@ -11,21 +11,30 @@ def finite(name: str, value: Any) -> float:
     """Return ``value`` as a float, or raise if it is not a finite real number."""
     try:
         x = float(value)
-    except (TypeError, ValueError):
+    except (TypeError, ValueError, OverflowError):
         raise InputError(name, value, "a finite real number") from None
     if not math.isfinite(x):
         raise InputError(name, value, "a finite real number")
     return x
 
 
+#: The smallest positive normal double: below it a number keeps fewer than 53 bits.
+TINY = 2.2250738585072014e-308
+#: The longest period accepted, s: far beyond anything physical, and far enough from the
+#: largest double that ``1.5 T + 4 h`` and ``T / M(1, cos(alpha/2))`` stay finite.
+MAX_PERIOD = 1e300
+
+
 def positive(name: str, value: Any) -> float:
-    """A finite number > 0 (a length, a step, g)."""
+    """A finite number > 0 (a length, a step, g), not a subnormal double."""
     try:
         x = float(value)
-    except (TypeError, ValueError):
+    except (TypeError, ValueError, OverflowError):
         x = math.nan
     if not (math.isfinite(x) and x > 0):
         raise InputError(name, value, "a finite number > 0")
+    if x < TINY:
+        raise InputError(name, value, f"a finite number > 0, at least {TINY:.4g} (smaller doubles lose digits)")
     return x
 
 
@@ -33,7 +42,7 @@ def non_negative(name: str, value: Any) -> float:
     """A finite number >= 0 (a measurement error)."""
     try:
         x = float(value)
-    except (TypeError, ValueError):
+    except (TypeError, ValueError, OverflowError):
         x = math.nan
     if not (math.isfinite(x) and x >= 0):
         raise InputError(name, value, "a finite number >= 0")
@@ -44,7 +53,7 @@ def amplitude(name: str, value: Any) -> float:
     """An amplitude in radians, ``0 <= alpha < pi`` (spec, Introduction)."""
     try:
         x = float(value)
-    except (TypeError, ValueError):
+    except (TypeError, ValueError, OverflowError):
         x = math.nan
     if not (math.isfinite(x) and 0.0 <= x < math.pi):
         raise InputError(name, value, "an angle in [0, pi) rad")
@@ -72,3 +81,44 @@ def time_span(t0: Any, t_max: Any, step: Any) -> tuple[float, float, float]:
     if not step < t_max - t0:
         raise InputError("step", step, f"< t_max - t0 = {t_max - t0:g}")
     return t0, t_max, step
+
+
+def steps_within(name: str, t0: float, t_max: float, step: float, limit: int) -> int:
+    """``N = Round((t_max - t0)/h)`` of (6), refused by arithmetic when it exceeds ``limit``.
+
+    Checked on the float quotient before ``int()``: a huge ``t_max`` or a tiny ``step``
+    is one clear error, never an ``OverflowError`` or a gigantic allocation later.
+    """
+    q = (t_max - t0) / step
+    if not q <= limit + 0.5:  # also catches inf and NaN
+        raise InputError(
+            name, step,
+            f">= (t_max - t0)/{limit:.0e} = {(t_max - t0) / limit:.3g} s (at most {limit:.0e} steps; "
+            "or a shorter t_max)",
+        )
+    return int(round(q))
+
+
+def sqrt_ratio(length: float, g: float) -> float:
+    """``sqrt(l/g)``, also where ``l/g`` overflows or underflows but the root does not.
+
+    ``sqrt(l/g)`` (two roundings) where the quotient is a normal double, else
+    ``sqrt(l)/sqrt(g)``: ``l = 1e308, g = 1e-308`` gives ``1e308``, not ``inf``.
+    """
+    r = length / g
+    if TINY <= r < math.inf:
+        return math.sqrt(r)
+    return math.sqrt(length) / math.sqrt(g)
+
+
+def period_scale(length: float, g: float) -> float:
+    """``2 pi sqrt(l/g)``, refused naming ``length`` or ``g`` beyond :data:`MAX_PERIOD`."""
+    t0 = 2 * math.pi * sqrt_ratio(length, g)
+    if not t0 <= MAX_PERIOD:
+        # Blame the input further from an ordinary pendulum (1 m, 9.81 m/s^2) in decades.
+        if abs(math.log10(length)) >= abs(math.log10(g / 9.80665)):
+            limit = (MAX_PERIOD / (2 * math.pi)) ** 2 * g
+            raise InputError("length", length, f"<= {limit:.3g} m for g = {g:g} (period 2 pi sqrt(l/g) <= {MAX_PERIOD:g} s)")
+        limit = length / (MAX_PERIOD / (2 * math.pi)) ** 2
+        raise InputError("g", g, f">= {limit:.3g} m/s^2 for length = {length:g} (period 2 pi sqrt(l/g) <= {MAX_PERIOD:g} s)")
+    return t0

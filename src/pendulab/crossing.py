@@ -20,9 +20,10 @@ from .cases import G
 from .dense import dense_crossing
 from .errors import InputError, LeftOscillationError, NoReturnError, NumericalError
 from .interpolation import InverseInterpolation, inverse_cubic
+from .methods import Status, resolve
 from .period import agm_period
 from .results import Result
-from .taylor import MAX_STEPS, method_code, step_count
+from .taylor import MAX_STEPS
 
 
 @dataclass(frozen=True, eq=False)
@@ -142,11 +143,9 @@ def estimate_period(
     if t_max is None:
         t_max = default_t_max(exact, step, t0)
     t0, t_max, step = v.time_span(t0, t_max, step)
-    code, order = method_code(method)
-    n = step_count(t0, t_max, step)
-    if n > MAX_STEPS:
-        raise InputError("step", step, f">= (t_max - t0)/{MAX_STEPS:.0e} (at most {MAX_STEPS:.0e} steps)")
-    from ._kernels import FOUND, LEFT_OSCILLATION, NO_RETURN, first_return
+    m = resolve(method)
+    n = v.steps_within("step", t0, t_max, step, MAX_STEPS)
+    from ._kernels import first_return
 
     c = -g / length
     if alpha * abs(c) * step < sys.float_info.min:
@@ -158,8 +157,8 @@ def estimate_period(
             f"{sys.float_info.min:.3g}, so its sign changes are lost to underflow; use an amplitude >= "
             f"{sys.float_info.min / (abs(c) * step):.3g} rad at this step (no t_max helps)"
         )
-    status, j, z1w, z2w = first_return(code, order, alpha, c, step, n)
-    if status == NO_RETURN:
+    status, j, z1w, z2w = first_return(int(m.code), m.order, alpha, c, step, n)
+    if status == Status.NO_RETURN:
         suggest = default_t_max(exact, step, t0)
         if suggest <= t_max:
             suggest = t0 + 2 * (t_max - t0)
@@ -167,12 +166,12 @@ def estimate_period(
             f"the simulation does not return to P = (alpha, 0) within t_max = {t_max:g} s "
             f"(exact period {exact:.6g} s); try --t-max {suggest:.4g}"
         )
-    if status == LEFT_OSCILLATION:
+    if status == Status.LEFT_OSCILLATION:
         raise LeftOscillationError(
             f"the discrete pendulum went over the top (|theta| > pi) at t = {t0 + (j + 1) * step:.6g} s: "
             f"step h = {step:g} is too large for amplitude {alpha:.6g} rad with method {method}; use a smaller step"
         )
-    if status != FOUND:
+    if status != Status.FOUND:
         raise NumericalError(
             f"the sign change of theta' comes at step j = {j}, too early for four interpolation nodes: "
             f"step h = {step:g} is too large; use a smaller step"

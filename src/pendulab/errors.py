@@ -3,25 +3,30 @@
 Every bad input raises :class:`InputError` (a ``ValueError``) whose message names the
 argument, the value received and the allowed range; every numerical failure raises a
 :class:`NumericalError` subclass with a message that says what to change. The CLI turns
-both into one line on stderr and exit status 2.
+both into one line on stderr and exit status 2; the web API turns an ``InputError`` into
+status 422 naming its field.
+
+``NumericalError`` is deliberately not a ``ValueError``: code that catches ``ValueError``
+for bad input must not swallow a failed computation, and code that expects a numerical
+failure (no return to ``P``) must not hide a bug that raised ``ValueError``.
 """
 from __future__ import annotations
 
 
-class PendulabError(ValueError):
+class PendulabError(Exception):
     """Base class of the project's errors."""
 
 
-class InputError(PendulabError):
+class InputError(PendulabError, ValueError):
     """A value outside its allowed range.
 
     Parameters
     ----------
     name : str
         The argument's name as the library spells it (``t_max``); the CLI shows it as
-        its option (``--t-max``).
+        its option (``--t-max``), the web API as its query field.
     value : object
-        The value received.
+        The value received (shown as written; a long or unprintable text is shortened).
     allowed : str
         The allowed range, in words (``"a finite number > 0"``).
     """
@@ -51,3 +56,8 @@ class MissingExtraError(ImportError):
     The message is one line naming the package and the extra that installs it, e.g.
     ``drawing plots needs matplotlib, which is not installed: pip install 'pendulab[report]'``.
     """
+
+
+class DefinitionError(PendulabError, ValueError):
+    """A method defined inconsistently (a quadrature rule whose weights or degree are wrong,
+    interpolation nodes that coincide): a programming error in the caller's data."""

@@ -8,21 +8,8 @@ to it (correctly rounded) for the float path.
 from __future__ import annotations
 
 import math
-import re
 from dataclasses import dataclass
 from fractions import Fraction
-
-from .errors import InputError
-
-_NUMBER = r"[+-]?(?:\d+\.?\d*|\.\d+)(?:[eE][+-]?\d+)?"
-# "4pi/5", "4*pi/5", "pi/4", "-pi", "3pi", "0.5*pi", "pi*2/3"
-_PI_FORM = re.compile(
-    rf"^(?P<num>{_NUMBER})?\s*\*?\s*(?:π|pi)\s*(?:\*\s*(?P<mul>{_NUMBER}))?\s*(?:/\s*(?P<den>{_NUMBER}))?$",
-    re.IGNORECASE,
-)
-_DEG_FORM = re.compile(rf"^(?P<num>{_NUMBER})\s*(?:deg|degrees?|°)$", re.IGNORECASE)
-_RAD_FORM = re.compile(rf"^(?P<num>{_NUMBER})\s*(?:rad)?$", re.IGNORECASE)
-_FRACTION_FORM = re.compile(rf"^(?P<num>{_NUMBER})\s*/\s*(?P<den>{_NUMBER})$")
 
 
 @dataclass(frozen=True)
@@ -45,8 +32,11 @@ class Exact:
 
     def __float__(self) -> float:
         if self.pi_power == 0:
-            return float(self.coef)  # Fraction -> float is correctly rounded
-        return float(self.mpf(40))
+            try:
+                return float(self.coef)  # Fraction -> float is correctly rounded
+            except OverflowError:  # beyond the largest double
+                return math.inf if self.coef > 0 else -math.inf
+        return float(self.mpf(40))  # mpmath rounds an overflow to +-inf
 
     def mpf(self, dps: int):
         """The value as an ``mpmath.mpf`` at ``dps`` significant digits."""
@@ -71,64 +61,24 @@ class Exact:
         return cls(Fraction(value), 0, repr(value))
 
 
-_EXPONENT = re.compile(r"[eE]([+-]?\d+)$")
-#: Exponents beyond this are far outside the doubles; refusing them keeps ``Fraction``
-#: from building a gigantic integer (``1e99999999`` would never finish).
-_MAX_EXPONENT = 400
-_MAX_DIGITS = 200
-
-
-def _fraction(text: str) -> Fraction:
-    """The exact value of a decimal literal such as ``9.80665`` or ``1e-3``."""
-    m = _EXPONENT.search(text)
-    if len(text) > _MAX_DIGITS or (m and abs(int(m.group(1))) > _MAX_EXPONENT):
-        raise ValueError(text)
-    return Fraction(text)
-
-
 def parse_number(name: str, text: str) -> Exact:
-    """Parse a plain real number or ratio, ``2.0800838231`` or ``1/3``, exactly."""
-    s = str(text).strip()
-    try:
-        if m := _FRACTION_FORM.match(s):
-            den = _fraction(m["den"])
-            if den == 0:
-                raise ZeroDivisionError
-            return Exact(_fraction(m["num"]) / den, 0, s)
-        if _RAD_FORM.match(s):
-            return Exact(_fraction(s.rstrip("radRAD ").strip()), 0, s)
-    except (ValueError, ZeroDivisionError):
-        pass
-    raise InputError(name, repr(text), "a number such as 3.5, 2e-3 or 1/3")
+    """Parse a plain real number or ratio, ``2.0800838231`` or ``1/3``, exactly.
+
+    The grammar and its limits are :func:`pendulab.inputs.real`'s.
+    """
+    from .inputs import real
+
+    return real(name, text)
 
 
 def parse_angle(name: str, text: str | float) -> Exact:
     """Parse an angle: ``0.785``, ``pi/4``, ``4pi/5``, ``4*pi/5``, ``45deg``, ``45°``.
 
-    Returns the exact angle in radians. Range is not checked here (see
-    :func:`pendulab._validate.amplitude`).
+    Returns the exact angle in radians; the range is not checked here (see
+    :func:`pendulab.inputs.angle`, which does).
     """
-    if isinstance(text, (int, float)):
+    if isinstance(text, (int, float)) and not isinstance(text, bool):
         return Exact.of(text)
-    s = str(text).strip().replace(" ", "")
-    try:
-        if m := _PI_FORM.match(s):
-            coef = Fraction(1)
-            if m["num"] is not None:
-                coef *= _fraction(m["num"])
-            if m["mul"] is not None:
-                coef *= _fraction(m["mul"])
-            if m["den"] is not None:
-                coef /= _fraction(m["den"])
-            return Exact(coef, 1, str(text).strip())
-        if m := _DEG_FORM.match(s):
-            return Exact(_fraction(m["num"]) / 180, 1, str(text).strip())
-        return Exact(parse_number(name, s).coef, 0, str(text).strip())
-    except (ValueError, ZeroDivisionError, InputError):
-        pass
-    raise InputError(name, repr(text), "an angle such as 0.785, pi/4, 4pi/5, 45deg or 45°")
+    from .inputs import angle_value
 
-
-def degrees(x: float) -> float:
-    """Radians to degrees."""
-    return math.degrees(x)
+    return angle_value(name, text)

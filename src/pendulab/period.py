@@ -33,12 +33,21 @@ _RTOL = 4 * np.finfo(float).eps
 def small_angle_period(length: Any, g: Any = G) -> Any:
     """Small-angle period ``2 pi sqrt(l/g)`` (problem 1). Vectorised over ``length``."""
     if np.ndim(length) == 0:
-        return 2 * math.pi * math.sqrt(v.positive("length", length) / v.positive("g", g))
+        return v.period_scale(v.positive("length", length), v.positive("g", g))
     lengths = np.asarray(length, dtype=float)
     if not np.all(np.isfinite(lengths) & (lengths > 0)):
         bad = lengths[~(np.isfinite(lengths) & (lengths > 0))][0]
         v.positive("length", bad)
-    return 2 * np.pi * np.sqrt(lengths / v.positive("g", g))
+    g = v.positive("g", g)
+    if lengths.size:
+        v.positive("length", float(lengths.min()))  # no subnormal lengths
+    for extreme in (lengths.min(initial=1.0), lengths.max(initial=1.0)):
+        v.period_scale(float(extreme), g)  # refuses an overflowing period by arithmetic
+    with np.errstate(under="ignore"):
+        r = lengths / g
+    if np.all((r >= v.TINY) & (r < np.inf)):
+        return 2 * np.pi * np.sqrt(r)
+    return 2 * np.pi * (np.sqrt(lengths) / math.sqrt(g))
 
 
 def agm_mean(b0: Any, iterations: int | None = None) -> Any:

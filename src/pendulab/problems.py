@@ -12,6 +12,7 @@ from typing import TYPE_CHECKING
 
 from . import cases
 from .crossing import PeriodEstimate, estimate_period, observed_orders
+from .errors import NumericalError
 from .group import GroupLength, group_length
 from .period import agm_period
 from .results import Result
@@ -330,6 +331,8 @@ def problem2(
 PROBLEM4_TOLERANCE = 1e-5
 #: Points per data step for the deviation from the exact motion between data points.
 PROBLEM4_FINE = 20
+#: The most data steps of problem 4 (2e6 points of exact motion, about 100 MB of work arrays).
+PROBLEM4_MAX_STEPS = 100_000
 
 
 @dataclass(frozen=True, eq=False)
@@ -418,6 +421,15 @@ def problem4(
         t_max, rule = float(math.ceil(period)), f"ceil(T^) = ceil({period:.6f})"
     else:
         rule = "given"
+    from . import _validate as v
+    from .errors import InputError
+
+    # Work by arithmetic first: at most PROBLEM4_MAX_STEPS data steps (the exact motion is
+    # then evaluated on 20 times as many points), and at least one point per term of (10).
+    _, t_end, h = v.time_span(0.0, t_max, v.positive("step", step))
+    if v.steps_within("step", 0.0, t_end, h, PROBLEM4_MAX_STEPS) + 1 < len(TRIG_BASIS):
+        raise InputError("step", step, f"<= t_max/{len(TRIG_BASIS) - 1} = {t_end / (len(TRIG_BASIS) - 1):.6g} s "
+                         f"so that the data has at least {len(TRIG_BASIS)} points, one per coefficient of (10)")
     data = simulate(length, amplitude, step, t_max, 0.0, g)
     fit = least_squares(data.t, data.theta, decimals=decimals)
     terms = " + ".join(f"{n} {lab}" if lab != "1" else n for n, lab in zip(fit.names, TRIG_LABELS))

@@ -29,10 +29,10 @@ from .cases import G
 from ._kernels import first_return
 from .errors import InputError
 from .period import _check_amplitudes, agm_period
-from .taylor import method_code
+from .methods import Status, resolve
 
 #: Status of each pendulum, as :func:`pendulab._kernels.first_return` reports it.
-STATUS = ("found", "no_return", "left_oscillation", "too_early")
+STATUS = tuple(s.name.lower() for s in Status)
 #: Pendulums per chunk (one progress tick, one Dask task): large enough to keep
 #: both cores busy, small enough for a smooth progress bar.
 CHUNK = 2048
@@ -161,7 +161,7 @@ def _run_chunk(code: int, order: int, alphas: np.ndarray, lengths: np.ndarray, g
     n_steps = np.array([step_count(0.0, default_t_max(float(T), h), h) for T in exact], dtype=np.int64)
     kernel = first_returns if parallel else first_returns_serial
     status, j, z1w, z2w = kernel(code, order, alphas, -g / lengths, h, n_steps)
-    found = status == 0
+    found = status == Status.FOUND
     t = (j[:, None] - 2 + np.arange(5)) * h  # t_k = k h (6): nodes j-2 .. j+2
     with np.errstate(invalid="ignore", divide="ignore"):
         linear = t[:, 2] + h * z2w[:, 2] / (z2w[:, 2] - z2w[:, 3])
@@ -171,7 +171,7 @@ def _run_chunk(code: int, order: int, alphas: np.ndarray, lengths: np.ndarray, g
     cubic = np.where(found, cubic, nan)
     err_est = np.where(found, err_est, nan)
     # Steps taken: j + 2 when found (one past the sign change), else the index reported.
-    steps = np.where(found, j + 2, np.where(status == 2, j + 1, j))
+    steps = np.where(found, j + 2, np.where(status == Status.LEFT_OSCILLATION, j + 1, j))
     return {
         "exact": exact,
         "status": status,
@@ -185,7 +185,7 @@ def _run_chunk(code: int, order: int, alphas: np.ndarray, lengths: np.ndarray, g
 def _check_methods(methods: Any) -> list[tuple[str, int, int]]:
     if isinstance(methods, str):
         methods = [methods]
-    out = [(m, *method_code(m)) for m in methods]
+    out = [(m.name, int(m.code), m.order) for m in map(resolve, methods)]
     if not out:
         raise InputError("method", "[]", "at least one method")
     return out
@@ -217,7 +217,7 @@ def sweep(
     steps : float or sequence of float
         Steps ``h`` > 0.
     methods : str or sequence of str
-        Integrators (see :func:`pendulab.taylor.method_code`).
+        Integrators (see :func:`pendulab.methods.resolve`).
     lengths : float or array_like
         ``l`` > 0 (m), broadcast against ``amplitudes``.
     g : float

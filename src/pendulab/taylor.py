@@ -5,20 +5,36 @@
 """
 from __future__ import annotations
 
+from collections.abc import Mapping
 from dataclasses import dataclass
 from typing import Any
 
 import numpy as np
 
 from . import _validate as v
+from . import methods as _methods
 from .cases import G
 from .errors import InputError
 from .results import Result
 
-#: Integrators by name: (kernel code, order). ``taylor2`` is the coursework's (3);
-#: ``taylor:P`` (any integer ``1 <= P <= 30``) is the Taylor method of order ``P``.
-METHODS: dict[str, tuple[int, int]] = {"taylor2": (0, 2), "rk4": (1, 4), "verlet": (2, 2)}
-TAYLOR_CODE, MAX_TAYLOR_ORDER = 3, 30  # as in _kernels (not imported: it loads numba)
+
+class _Codes(Mapping):
+    """``{name: (kernel code, order)}`` of :data:`pendulab.methods.METHODS`, read live."""
+
+    def __getitem__(self, name: str) -> tuple[int, int]:
+        m = _methods.METHODS[name]
+        return int(m.code), m.order
+
+    def __iter__(self):
+        return iter(_methods.METHODS)
+
+    def __len__(self) -> int:
+        return len(_methods.METHODS)
+
+
+#: Integrators by name: (kernel code, order); a view of the registry :mod:`pendulab.methods`.
+METHODS: Mapping[str, tuple[int, int]] = _Codes()
+TAYLOR_CODE, MAX_TAYLOR_ORDER = int(_methods.Kernel.TAYLOR), _methods.MAX_TAYLOR_ORDER
 #: The largest trajectory kept in memory (points); longer runs stream (crossing.py).
 MAX_POINTS = 10_000_001
 #: The most steps one simulation may take (about a minute on one core).
@@ -26,19 +42,9 @@ MAX_STEPS = 2_000_000_000
 
 
 def method_code(method: str) -> tuple[int, int]:
-    """The kernel code and order of the integrator named ``method``.
-
-    ``"taylor2"`` (the coursework's (3)), ``"rk4"``, ``"verlet"``, or ``"taylor:P"`` for
-    the Taylor method of order ``P`` (``"taylor:2"`` is (3) by the general recurrences).
-    """
-    allowed = "one of " + ", ".join(METHODS) + f", taylor:P (P an integer in [1, {MAX_TAYLOR_ORDER}])"
-    if isinstance(method, str) and method in METHODS:
-        return METHODS[method]
-    if isinstance(method, str) and method.startswith("taylor:"):
-        text = method[len("taylor:") :]
-        if text.isascii() and text.isdigit() and 1 <= int(text) <= MAX_TAYLOR_ORDER:
-            return TAYLOR_CODE, int(text)
-    raise InputError("method", repr(method), allowed)
+    """The kernel code and order of the integrator named ``method`` (:func:`pendulab.methods.resolve`)."""
+    m = _methods.resolve(method)
+    return int(m.code), m.order
 
 
 def step_count(t0: float, t_max: float, step: float) -> int:
@@ -128,15 +134,19 @@ def simulate(
     g = v.positive("g", g)
     t0, t_max, step = v.time_span(t0, t_max, step)
     code, order = method_code(method)
-    n = step_count(t0, t_max, step)
     stride = v.integer("stride", stride, 1)
+    # Work and memory by arithmetic, before anything is allocated.
+    n = v.steps_within("step", t0, t_max, step, MAX_STEPS)
+    kept = n // stride + 1 + (n % stride != 0)
+    if kept > MAX_POINTS:
+        raise InputError(
+            "step", step,
+            f">= (t_max - t0)/{MAX_POINTS - 1:.0e} = {(t_max - t0) / (MAX_POINTS - 1):.3g} s "
+            f"(at most {MAX_POINTS - 1:.0e} points kept; or a shorter t_max, or a stride)",
+        )
     index = np.arange(0, n + 1, stride)
     if index[-1] != n:
         index = np.append(index, n)
-    if len(index) > MAX_POINTS:
-        raise InputError("step", step, f">= (t_max - t0)/{MAX_POINTS - 1:.0e} to keep at most {MAX_POINTS:.0e} points")
-    if n > MAX_STEPS:
-        raise InputError("step", step, f">= (t_max - t0)/{MAX_STEPS:.0e} (at most {MAX_STEPS:.0e} steps)")
     from ._kernels import fill_thinned, trajectory
 
     if stride == 1:

@@ -73,6 +73,9 @@ def main(argv: list[str] | None = None) -> int:
     where = f"pendulab {sub}" if sub in COMMANDS else "pendulab"
     try:
         cli.main(args=args, prog_name="pendulab", standalone_mode=False)
+    except click.exceptions.NoArgsIsHelpError as exc:  # `pendulab` alone: the help, as click prints it
+        click.echo(exc.ctx.get_help())
+        return 2
     except click.exceptions.Exit as exc:
         return exc.exit_code
     except click.exceptions.Abort:
@@ -88,7 +91,7 @@ def main(argv: list[str] | None = None) -> int:
         click.echo(f"{where}: error: {' '.join(exc.format_message().split())}", err=True)
         return 2
     except PendulabError as exc:
-        click.echo(f"{where}: error: {_cli_message(exc)}", err=True)
+        click.echo(f"{where}: error: {_cli_message(exc, sub)}", err=True)
         return 2
     except MissingExtraError as exc:
         click.echo(f"{where}: error: {exc}", err=True)
@@ -99,13 +102,25 @@ def main(argv: list[str] | None = None) -> int:
     return 0
 
 
-def _cli_message(exc: PendulabError) -> str:
-    """A library error in the CLI's words: argument names become option names."""
-    from ..errors import InputError
+def _cli_message(exc: PendulabError, command: str | None) -> str:
+    """A library error in the CLI's words: the argument is named as the command spells it.
 
-    if isinstance(exc, InputError):
-        return f"--{exc.name.replace('_', '-')} = {exc.value!s} is not allowed: must be {exc.allowed}"
-    return " ".join(str(exc).split())
+    ``t_max`` becomes ``--t-max`` when the command has that option, ``NUMBERS`` for an
+    argument; a name the command does not have stays the library's, without dashes.
+    """
+    from ..errors import InputError
+    from ._common import option_name
+
+    if not isinstance(exc, InputError):
+        return " ".join(str(exc).split())
+    name = exc.name
+    cmd = LazyGroup._load(command) if command in COMMANDS else None
+    flag = "--" + name.replace("_", "-")
+    for p in cmd.params if cmd is not None else ():
+        if p.name == name or flag in getattr(p, "opts", ()):
+            name = option_name(p)
+            break
+    return " ".join(f"{name} = {exc.value!s} is not allowed: must be {exc.allowed}".split())
 
 
 if __name__ == "__main__":  # pragma: no cover

@@ -9,89 +9,57 @@ from typing import Any
 
 import click
 
+from .. import inputs
 from ..cases import G_TEXT
 from ..errors import InputError
-from ..exact import Exact, parse_angle, parse_number
+from ..exact import Exact
 
 
-class _Type(click.ParamType):
-    """A parameter type whose check is one of the library's validators."""
+class Parsed(click.ParamType):
+    """A parameter type whose parser is one of :mod:`pendulab.inputs`' functions.
 
-    def _fail(self, exc: InputError, param: click.Parameter | None, ctx) -> None:
-        opt = param.opts[-1] if param is not None and param.opts else (param.name if param else "value")
-        self.fail(f"{opt} = {exc.value!s} is not allowed: must be {exc.allowed}", param, ctx)
+    ``parse(text)`` returns the value or raises :class:`InputError`; the message then
+    names the option as the command spells it (``--t-max``), the text and the range.
+    """
+
+    def __init__(self, parse: Callable[[str], Any], name: str):
+        self.parse = parse
+        self.name = name
 
     def convert(self, value, param, ctx):
-        if not isinstance(value, str):
+        if not isinstance(value, str):  # a default that is already a value
             return value
         try:
             return self.parse(value)
         except InputError as exc:
-            self._fail(exc, param, ctx)
-
-    def parse(self, text: str) -> Any:
-        raise NotImplementedError
+            self.fail(f"{option_name(param)} = {exc.value!s} is not allowed: must be {exc.allowed}", param, ctx)
 
 
-class AngleType(_Type):
-    """An amplitude: ``0.785``, ``pi/4``, ``4pi/5``, ``4*pi/5``, ``45deg``, ``45°``; in [0, pi)."""
-
-    name = "angle"
-
-    def parse(self, text: str) -> Exact:
-        angle = parse_angle("amplitude", text)
-        x = float(angle)
-        if not (0 <= x < math.pi) or (angle.pi_power == 1 and angle.coef >= 1):
-            raise InputError("amplitude", text, "an angle in [0, pi) rad, e.g. 0 to 179.99deg")
-        return angle
+def option_name(param: click.Parameter | None) -> str:
+    """``--t-max`` for an option, ``NUMBERS`` for an argument."""
+    if param is None:
+        return "value"
+    if isinstance(param, click.Option) and param.opts:
+        return max(param.opts, key=len)
+    return (param.name or "value").upper()
 
 
-class PositiveType(_Type):
-    """A finite number > 0, kept exactly as written (``Exact``)."""
-
-    name = "number"
-
-    def parse(self, text: str) -> Exact:
-        x = parse_number("value", text)
-        if not (math.isfinite(float(x)) and float(x) > 0):
-            raise InputError("value", text, "a finite number > 0")
-        return x
+def integer(low: int, high: int) -> Parsed:
+    """An integer in ``[low, high]`` (ASCII digits; ``1e3`` is 1000)."""
+    return Parsed(lambda s: inputs.integer("value", s, low, high), f"{low}..{high}")
 
 
-class FloatType(_Type):
-    """A finite real number."""
-
-    name = "number"
-
-    def parse(self, text: str) -> float:
-        return float(parse_number("value", text))
+def output(*extensions: str) -> Parsed:
+    """A file to write, with one of ``extensions``, in a writable folder: checked before any work."""
+    return Parsed(lambda s: str(inputs.output_path("value", s, extensions)), "|".join(e.lstrip(".") for e in extensions))
 
 
-class PositiveListType(_Type):
-    """A comma-separated list of numbers > 0: ``1e-2,1e-3,1e-4``."""
-
-    name = "list"
-
-    def parse(self, text: str) -> list[float]:
-        items = [s for s in text.split(",") if s.strip()]
-        if not items:
-            raise InputError("value", repr(text), "a comma-separated list of numbers > 0")
-        out = []
-        for s in items:
-            try:
-                x = float(parse_number("value", s))
-            except InputError:
-                raise InputError("value", repr(s), "a comma-separated list of numbers > 0") from None
-            if not (math.isfinite(x) and x > 0):
-                raise InputError("value", s, "a comma-separated list of numbers > 0")
-            out.append(x)
-        return out
-
-
-ANGLE = AngleType()
-POSITIVE = PositiveType()
-FLOAT = FloatType()
-POSITIVE_LIST = PositiveListType()
+ANGLE = Parsed(lambda s: inputs.angle("amplitude", s), "angle")
+POSITIVE = Parsed(lambda s: inputs.positive("value", s), "number")
+FLOAT = Parsed(lambda s: float(inputs.real("value", s)), "number")
+POSITIVE_LIST = Parsed(lambda s: inputs.positive_list("value", s), "list")
+METHOD = Parsed(lambda s: inputs.method("method", s).name, "method")
+FIGURE = output(".png", ".svg", ".pdf")
 
 
 def json_option(f: Callable) -> Callable:

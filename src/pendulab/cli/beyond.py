@@ -2,75 +2,64 @@
 from __future__ import annotations
 
 import math
+import re
 import sys
 
 import click
 
+from .. import inputs
 from ..errors import InputError
-from ..exact import parse_angle
-from ._common import POSITIVE, POSITIVE_LIST, _Type, check_plot_path, emit_json, g_option, json_option, save_plot
+from ._common import (
+    FIGURE,
+    POSITIVE,
+    POSITIVE_LIST,
+    Parsed,
+    check_plot_path,
+    emit_json,
+    g_option,
+    json_option,
+    output,
+    save_plot,
+)
 
 #: The amplitudes (degrees) of the approximations table.
 TABLE_DEGREES = (1, 10, 30, 60, 90, 120, 150, 170, 179, 179.9)
 
 
-class AngleRangeType(_Type):
-    """``START:STOP:COUNT`` (``1deg:179deg:1000``: COUNT evenly spaced angles, both ends
-    included) or a single angle; every angle in (0, pi)."""
-
-    name = "range"
-    _ALLOWED = "START:STOP:COUNT with 0 < START < STOP < pi and COUNT an integer >= 2, or one angle in (0, pi)"
-
-    def parse(self, text: str):
-        import numpy as np
-
-        parts = text.split(":")
-        if len(parts) == 1:
-            a = self._angle(text, parts[0])
-            return np.array([a])
-        if len(parts) != 3:
-            raise InputError("amplitude", text, self._ALLOWED)
-        start, stop = self._angle(text, parts[0]), self._angle(text, parts[1])
-        try:
-            count = int(parts[2])
-        except ValueError:
-            raise InputError("amplitude", text, self._ALLOWED) from None
-        if count < 2 or not start < stop:
-            raise InputError("amplitude", text, self._ALLOWED + " (the range is empty or reversed)")
-        return np.linspace(start, stop, count)
-
-    def _angle(self, text: str, part: str) -> float:
-        try:
-            x = float(parse_angle("amplitude", part.strip()))
-        except InputError:
-            raise InputError("amplitude", text, self._ALLOWED) from None
-        if not 0 < x < math.pi:
-            raise InputError("amplitude", text, self._ALLOWED)
-        return x
+#: The most amplitudes in one sweep range.
+MAX_COUNT = 1_000_000
 
 
-class MethodListType(_Type):
-    """A comma-separated list of integrator names, checked by the library."""
+def _methods(text: str) -> list[str]:
+    """Integrator names separated by commas or spaces, each one of :mod:`pendulab.methods`."""
+    from .. import methods
 
-    name = "methods"
-
-    def parse(self, text: str) -> list[str]:
-        from ..taylor import method_code
-
-        names = [s.strip() for s in text.split(",") if s.strip()]
-        if not names:
-            raise InputError("method", repr(text), "a comma-separated list of methods")
-        for n in names:
-            method_code(n)
-        return names
+    return [m.name for m in inputs.parse_list("method", text, inputs.method, methods.allowed(), 100)]
 
 
-ANGLE_RANGE = AngleRangeType()
-METHOD_LIST = MethodListType()
+def _array(values: list[float]):
+    import numpy as np
+
+    return np.asarray(values)
+
+
+def _scheduler(text: str) -> str:
+    """A Dask scheduler address, ``tcp://host:port`` (or ``tls://``)."""
+    s = text.strip()
+    if not re.fullmatch(r"(tcp|tls)://[A-Za-z0-9.\-\[\]:]+", s, re.ASCII):
+        raise InputError("scheduler", inputs.shown(s), "a Dask scheduler address such as tcp://10.0.0.1:8786")
+    return s
+
+
+#: ``START:STOP:COUNT`` (``1deg:179deg:1000``: COUNT evenly spaced angles, both ends
+#: included) or a single angle; every angle in (0, pi).
+ANGLE_RANGE = Parsed(lambda s: _array(inputs.angle_range("amplitude", s, MAX_COUNT)), "range")
+METHOD_LIST = Parsed(_methods, "methods")
+SCHEDULER = Parsed(_scheduler, "address")
 
 
 @click.command()
-@click.option("--plot", type=click.Path(dir_okay=False),
+@click.option("--plot", type=FIGURE,
               help="Write the relative error of every formula over [0, 180) degrees to this PNG/SVG/PDF.")
 @json_option
 def approximations(plot, as_json):
@@ -127,29 +116,28 @@ def approximations(plot, as_json):
 @click.option("--method", "methods", type=METHOD_LIST, default="taylor2,rk4,verlet", show_default=True,
               help="Integrators, comma-separated: taylor2, rk4, verlet, taylor:P.")
 @click.option("-l", "--length", type=POSITIVE, default="1", show_default=True, help="Pendulum length l, m.")
-@click.option("--output", type=click.Path(dir_okay=False), help="Write every pendulum's row to this .csv or .parquet.")
-@click.option("--plot", type=click.Path(dir_okay=False), help="Write |period error| against amplitude to this PNG/SVG/PDF.")
-@click.option("--scheduler", metavar="ADDRESS", help="Run on this Dask scheduler (tcp://host:8786).")
+@click.option("--output", type=output(".csv", ".parquet"), help="Write every pendulum's row to this .csv or .parquet.")
+@click.option("--plot", type=FIGURE, help="Write |period error| against amplitude to this PNG/SVG/PDF.")
+@click.option("--scheduler", type=SCHEDULER, metavar="ADDRESS", help="Run on this Dask scheduler (tcp://host:8786).")
 @g_option
 @json_option
 def sweep(amplitudes, steps, methods, length, output, plot, scheduler, g, as_json):
     """The period error of each method over a range of amplitudes (many pendulums at once)."""
-    from .._atomic import check_writable
     from .._extras import require
     from ..sweep import sweep as run
 
     if output:
-        check_writable("output", output)
-        if not output.lower().endswith((".csv", ".parquet")):
-            raise InputError("output", output, "a file name ending in .csv or .parquet")
         require("pyarrow", f"--output {output}")
     if scheduler:
         require("dask.distributed", "--scheduler")
     if plot:
         check_plot_path("plot", plot)
     total = len(amplitudes) * len(steps) * len(methods)
-    with click.progressbar(length=total, label="pendulums", file=sys.stderr) as bar:
-        result = run(amplitudes, steps, methods, float(length), float(g), progress=bar.update, scheduler=scheduler)
+    if sys.stderr.isatty():
+        with click.progressbar(length=total, label="pendulums", file=sys.stderr) as bar:
+            result = run(amplitudes, steps, methods, float(length), float(g), progress=bar.update, scheduler=scheduler)
+    else:  # no progress lines in a log: stderr keeps to errors
+        result = run(amplitudes, steps, methods, float(length), float(g), scheduler=scheduler)
     if output:
         result.write(output)
     if plot:

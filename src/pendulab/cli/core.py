@@ -6,13 +6,16 @@ import click
 from ..cases import EXAMPLE_GROUP, FIGURE3_STEP, FIGURE3_T_MAX, PROBLEM3_AMPLITUDE, PROBLEM3_STEPS
 from ._common import (
     ANGLE,
+    FIGURE,
     FLOAT,
+    METHOD,
     POSITIVE,
     POSITIVE_LIST,
     check_plot_path,
     emit_json,
     fmt,
     g_option,
+    integer,
     json_option,
     save_plot,
 )
@@ -21,19 +24,23 @@ _LENGTH_HELP = "Pendulum length l, m (> 0)."
 _ANGLE_HELP = "Amplitude alpha in [0, pi): 0.785, pi/4, 4pi/5, 45deg, 45°."
 
 
+#: The most rows simulate prints (table, CSV or JSON): about 100 MB of text.
+MAX_PRINTED = 1_000_001
+
+
 def _method_option(f):
     return click.option(
-        "--method", default="taylor2", show_default=True,
-        help="Integrator: taylor2 (the coursework's algorithm (3)), rk4, verlet, or taylor:P (order P).",
+        "--method", type=METHOD, default="taylor2", show_default=True,
+        help="Integrator: taylor2 (the coursework's algorithm (3)), rk4, verlet, or taylor:P (order P, 1..30).",
     )(f)
 
 
 @click.command()
 @click.option("-l", "--length", type=POSITIVE, required=True, help=_LENGTH_HELP)
 @click.option("-a", "--amplitude", type=ANGLE, required=True, help=_ANGLE_HELP)
-@click.option("--iterations", type=click.IntRange(0, 1000), default=None,
+@click.option("--iterations", type=integer(0, 1000), default=None,
               help="Fixed AGM iterations (7: the coursework's T^ of (8)); default: to convergence.")
-@click.option("--digits", type=click.IntRange(1, 10000), default=None,
+@click.option("--digits", type=integer(1, 10000), default=None,
               help="Print the periods to this many significant digits, each proved by ball arithmetic (Arb); default 15.")
 @g_option
 @json_option
@@ -76,18 +83,29 @@ def period(length, amplitude, iterations, digits, g, as_json):
 @click.option("--step", type=POSITIVE, default=str(FIGURE3_STEP), show_default=True, help="Step h, s.")
 @click.option("--t-max", "t_max", type=FLOAT, default=str(FIGURE3_T_MAX), show_default=True, help="End time, s.")
 @click.option("--t0", type=FLOAT, default="0", show_default=True, help="Start time, s.")
-@click.option("--digits", type=click.IntRange(1, 17), default=12, show_default=True,
+@click.option("--digits", type=integer(1, 17), default="12", show_default=True,
               help="Significant digits in the table.")
 @click.option("--csv", "as_csv", is_flag=True, help="Print CSV (t,theta,omega) at full precision.")
-@click.option("--plot", type=click.Path(dir_okay=False), help="Write Figure 1 (t_j, z1_j) to this PNG/SVG/PDF.")
-@click.option("--phase", type=click.Path(dir_okay=False), help="Write Figure 2 (phase points, P circled).")
+@click.option("--plot", type=FIGURE, help="Write Figure 1 (t_j, z1_j) to this PNG/SVG/PDF.")
+@click.option("--phase", type=FIGURE, help="Write Figure 2 (phase points, P circled) to this PNG/SVG/PDF.")
 @_method_option
 @g_option
 @json_option
 def simulate(length, amplitude, step, t_max, t0, digits, as_csv, plot, phase, method, g, as_json):
     """Simulate the pendulum by the Taylor algorithm (3): the table t, z1, z2."""
+    from .. import _validate as v
+    from ..errors import InputError
     from ..taylor import simulate as run
 
+    t0_, t_max_, h = v.time_span(t0, t_max, float(step))
+    rows = MAX_PRINTED - 1
+    if not (t_max_ - t0_) / h <= rows + 0.5:  # by arithmetic, before anything is allocated
+        ctx = click.get_current_context()
+        if ctx.get_parameter_source("step") is click.core.ParameterSource.DEFAULT:
+            raise InputError("t_max", t_max, f"<= t0 + {rows:.0e} h = {t0_ + rows * h:.6g} s to print at most "
+                             f"{rows:.0e} rows (or a larger --step)")
+        raise InputError("step", step, f">= (t_max - t0)/{rows:.0e} = {(t_max_ - t0_) / rows:.3g} s to print at "
+                         f"most {rows:.0e} rows (or a shorter --t-max)")
     for name, path in (("plot", plot), ("phase", phase)):
         if path:
             check_plot_path(name, path)
@@ -180,21 +198,19 @@ def estimate(length, amplitude, steps, t_max, method, dense, g, as_json):
 @click.argument("numbers", nargs=-1, required=True)
 @json_option
 def length(numbers, as_json):
-    """The pendulum length of a group of students, problem 3(b): 262 407 634 -> 2.0800838231."""
+    """The pendulum length of a group of students, problem 3(b): 262 407 634 -> 2.0800838231.
+
+    NUMBERS are separated by spaces, commas or both: 262 407 634, 262,407,634.
+    """
+    from .. import inputs
     from ..errors import InputError
     from ..group import group_length
 
-    nums = []
-    for s in numbers:
-        for part in s.split(","):
-            if not part.strip():
-                continue
-            if not part.strip().isdigit():
-                raise InputError("students", repr(part), "non-negative integers (student numbers)")
-            nums.append(int(part))
-    if not nums:
-        raise InputError("students", repr(" ".join(numbers)), "at least one student number")
-    res = group_length(nums)
+    nums = inputs.students("numbers", list(numbers))
+    try:
+        res = group_length(nums)
+    except InputError as exc:  # the library calls them students; here they are NUMBERS
+        raise InputError("numbers", exc.value, exc.allowed) from None
     if as_json:
         emit_json({"numbers": list(res.numbers), "sum": res.total, "digits": res.digits,
                    "length": res.length, "length_text": res.text})

@@ -1,104 +1,50 @@
 """Commands of problems 1, 2, 4, 5: ``gravity``, ``newton``, ``fit``, ``quadrature``."""
 from __future__ import annotations
 
-import math
-import re
 from fractions import Fraction
 
 import click
 
-from .. import cases
+from .. import cases, inputs
 from ..errors import InputError
-from ..exact import parse_angle, parse_number
-from ._common import ANGLE, POSITIVE, _Type, check_plot_path, emit_json, fmt, g_option, json_option
-
-_NUM = r"[+-]?(?:\d+\.?\d*|\.\d+)(?:[eE][+-]?\d+)?"
-_UNIT = re.compile(rf"^\s*(?P<num>{_NUM})\s*(?P<unit>[a-zA-Z]*)\s*$")
-
-
-class _Quantity(_Type):
-    """A number with an optional unit suffix, in SI; ``> 0`` or ``>= 0``."""
-
-    def __init__(self, units: dict[str, Fraction], default_unit: str, strict: bool):
-        self.units, self.default_unit, self.strict = units, default_unit, strict
-        self.name = "|".join(units)
-
-    def parse(self, text: str) -> float:
-        allowed = (
-            f"a finite number {'> 0' if self.strict else '>= 0'}, "
-            f"in {' or '.join(self.units)} (default {self.default_unit})"
-        )
-        m = _UNIT.match(text)
-        unit = (m["unit"] or self.default_unit) if m else None
-        if not m or unit not in self.units:
-            raise InputError("value", repr(text), allowed)
-        x = float(Fraction(m["num"]) * self.units[unit])
-        if not (math.isfinite(x) and (x > 0 if self.strict else x >= 0)):
-            raise InputError("value", text, allowed)
-        return x
-
+from ._common import ANGLE, FIGURE, POSITIVE, Parsed, check_plot_path, emit_json, fmt, g_option, json_option
 
 _M = {"m": Fraction(1), "cm": Fraction(1, 100), "mm": Fraction(1, 1000)}
 _S = {"s": Fraction(1), "ms": Fraction(1, 1000)}
-LENGTH = _Quantity(_M, "m", True)
-LENGTH_ERROR = _Quantity(_M, "m", False)
-PERIOD = _Quantity(_S, "s", True)
-PERIOD_ERROR = _Quantity(_S, "s", False)
 
 
-class _X0(_Type):
-    """A Newton start in ``(0, pi)``: ``1``, ``pi/3``, ``60deg``."""
-
-    name = "angle"
-
-    def parse(self, text: str) -> float:
-        x = float(parse_angle("x0", text))
-        if not 0 < x < math.pi:
-            raise InputError("x0", text, "an angle in (0, pi) rad, i.e. 0 < x0 < 180deg")
-        return x
+def _quantity(units: dict[str, Fraction], default_unit: str, strict: bool) -> Parsed:
+    """A number with an optional unit suffix, in SI (:func:`pendulab.inputs.quantity`)."""
+    return Parsed(lambda s: float(inputs.quantity("value", s, units, default_unit, strict)), "|".join(units))
 
 
-class _Round(_Type):
+def _round(text: str) -> int | None:
     """Decimals to round the normal equations to: an integer 0..15, or ``none``."""
+    from ..lsq import MAX_DECIMALS
 
-    name = "0..15|none"
-
-    def parse(self, text: str):
-        s = text.strip().lower()
-        if s in ("none", "no", "off"):
-            return None
-        if not re.fullmatch(r"\d{1,2}", s) or int(s) > 15:
-            raise InputError("round", repr(text), "an integer in [0, 15] or 'none'")
-        return int(s)
+    if text.strip().lower() in ("none", "no", "off"):
+        return None
+    try:
+        return inputs.integer("round", text, 0, MAX_DECIMALS)
+    except InputError as exc:
+        raise InputError("round", exc.value, f"an integer in [0, {MAX_DECIMALS}] or 'none'") from None
 
 
-class _Counts(_Type):
-    """A comma-separated list of integers >= 1: ``1,10,100`` (``1e5`` accepted)."""
+def _counts(text: str) -> list[int]:
+    """Numbers of subintervals: ``1,10,100`` (``1e5`` accepted), each in [1, MAX_N]."""
+    from ..quadrature import MAX_N
 
-    name = "list"
-
-    def parse(self, text: str) -> list[int]:
-        from ..quadrature import MAX_N
-
-        allowed = f"a comma-separated list of integers in [1, {MAX_N:.0e}]"
-        items = [s.strip() for s in text.split(",") if s.strip()]
-        if not items:
-            raise InputError("n", repr(text), allowed)
-        out = []
-        for s in items:
-            try:
-                x = parse_number("n", s).coef
-            except InputError:
-                raise InputError("n", repr(s), allowed) from None
-            if x.denominator != 1 or not 1 <= x <= MAX_N:
-                raise InputError("n", s, allowed)
-            out.append(int(x))
-        return out
+    return inputs.integer_list("n", text, 1, MAX_N)
 
 
-X0 = _X0()
-ROUND = _Round()
-COUNTS = _Counts()
+LENGTH = _quantity(_M, "m", True)
+LENGTH_ERROR = _quantity(_M, "m", False)
+PERIOD = _quantity(_S, "s", True)
+PERIOD_ERROR = _quantity(_S, "s", False)
+#: A Newton start in (0, pi): 1, pi/3, 60deg.
+X0 = Parsed(lambda s: float(inputs.angle("x0", s, open_low=True)), "angle")
+ROUND = Parsed(_round, "0..15|none")
+COUNTS = Parsed(_counts, "list")
 
 
 # --------------------------------------------------------------------------- gravity
@@ -194,7 +140,7 @@ def newton(length, target, x0, g, as_json):
 @click.option("--t-max", "t_max", type=POSITIVE, default=None, help="End of the data; default ceil(T) with T from (8).")
 @click.option("--round", "decimals", type=ROUND, default=str(cases.PROBLEM4_ROUND), show_default=True,
               help="Round the normal equations half away from zero to this many decimals (0..15, or none).")
-@click.option("--plot", type=click.Path(dir_okay=False), help="Write the data and the fitted phi to this PNG/SVG/PDF.")
+@click.option("--plot", type=FIGURE, help="Write the data and the fitted phi to this PNG/SVG/PDF.")
 @g_option
 @json_option
 def fit(length, amplitude, step, t_max, decimals, plot, g, as_json):

@@ -3,38 +3,24 @@ from __future__ import annotations
 
 import click
 
+from .. import inputs
 from ..cases import EXAMPLE_GROUP
-from ..errors import InputError
+from ._common import Parsed, output
 
 #: The example group as the option writes it: ``262,407,634``.
 EXAMPLE = ",".join(map(str, EXAMPLE_GROUP))
-
-
-class StudentsType(click.ParamType):
-    """Comma-separated student numbers: positive integers, e.g. the example group's."""
-
-    name = "numbers"
-
-    def convert(self, value, param, ctx):
-        if isinstance(value, tuple):
-            return value
-        items = [s.strip() for s in str(value).split(",")]
-        if not items or any(not s.isdigit() or int(s) <= 0 for s in items):
-            self.fail(
-                f"--students = {value!r} is not allowed: must be comma-separated positive integers, e.g. {EXAMPLE}",
-                param,
-                ctx,
-            )
-        return tuple(int(s) for s in items)
+STUDENTS = Parsed(lambda s: s, "numbers")  # checked with the extra NUMBERS, in the command
 
 
 @click.command()
+@click.argument("more", nargs=-1, metavar="[NUMBERS]...")
 @click.option(
     "--students",
-    type=StudentsType(),
+    type=STUDENTS,
     default=EXAMPLE,
     show_default=True,
-    help="The group's student numbers; their digit sum gives the pendulum length of problem 3(b).",
+    help="The group's student numbers, separated by commas or spaces; their digit sum gives the "
+         "pendulum length of problem 3(b). More numbers may follow as arguments: --students 1234 5678.",
 )
 @click.option(
     "--lang",
@@ -48,12 +34,11 @@ class StudentsType(click.ParamType):
     "-o",
     default="report.pdf",
     show_default=True,
-    type=click.Path(dir_okay=False),
+    type=output(".pdf"),
     help="Where to write the PDF (atomically: a failed run keeps an older file intact).",
 )
-def report(students: tuple[int, ...], lang: str, output: str) -> None:
+def report(more: tuple[str, ...], students: str, lang: str, output: str) -> None:
     """Write the coursework report: every question 1(a)-5(d) answered, at most 15 A4 pages."""
-    from .._atomic import check_writable
     from .._extras import require
     from ..group import group_length
 
@@ -61,9 +46,10 @@ def report(students: tuple[int, ...], lang: str, output: str) -> None:
         require(package, "pendulab report")
     from ..report import build_report
 
-    check_writable("output", output)  # before the work
-    if not students:
-        raise InputError("students", "", "comma-separated positive integers")
-    group_length(students)  # a sum with no non-zero digit fails here, before the work
-    build_report(students, lang=lang, output=output, progress=True)
+    ctx = click.get_current_context()
+    given = ctx.get_parameter_source("students") is not click.core.ParameterSource.DEFAULT
+    # --students 1234 5678 and 1234 5678 alone both mean the group (1234, 5678).
+    numbers = inputs.students("students", ([students] if given or not more else []) + list(more))
+    group_length(numbers)  # a sum with no non-zero digit fails here, before the work
+    build_report(numbers, lang=lang, output=output, progress=True)
     click.echo(f"pendulab: wrote {output}", err=True)

@@ -10,17 +10,16 @@ functions directly as well as through the app.
 from __future__ import annotations
 
 import math
-import re
 import threading
 from collections.abc import Mapping
 from typing import Any
 
 import numpy as np
 
-from .. import _validate as v
+from .. import inputs
 from ..cases import G_TEXT, PROBLEM5, G
 from ..errors import InputError, PendulabError
-from ..exact import parse_angle, parse_number
+from ..methods import Method
 
 #: A request that would run more steps than this is refused, so one request cannot hold the
 #: server's cores for long.
@@ -31,11 +30,6 @@ MAX_POINTS = 1_000_000
 DEFAULT_PLOT_POINTS = 2_000
 #: At most this many steps in one convergence sweep.
 MAX_SWEEP = 40
-#: Longest accepted parameter text: numbers and angles are short.
-_MAX_TEXT = 64
-# An exponent of 4+ digits would make the exact parser build a huge integer (1e99999999).
-_BIG_EXPONENT = re.compile(r"[eE][+-]?0*\d{4,}")
-
 #: Gravity presets, m/s^2. Earth: standard gravity (the coursework's g); Moon and
 #: Jupiter: NASA Planetary Fact Sheets (surface gravity, equatorial for Jupiter).
 G_PRESETS = {"earth": G, "moon": 1.62, "jupiter": 24.79}
@@ -60,7 +54,10 @@ _ALLOWED = {
     "step": "a finite number > 0 (s), such as 1e-3",
     "t_max": "a finite number > 0 (s), such as 20",
     "g": f"a finite number > 0 (m/s^2), such as {G_TEXT}",
+    "unit": "rad or deg: the unit of a plain-number amplitude",
 }
+#: An ordinary view (the defaults): which of step and t_max is unusual is judged against them.
+_TYPICAL = {"step": 1e-3, "t_max": 20.0}
 
 
 def _text(params: Mapping[str, str], name: str, default: str | None = None) -> str:
@@ -70,68 +67,61 @@ def _text(params: Mapping[str, str], name: str, default: str | None = None) -> s
         if default is not None:
             return default
         raise InputError(name, "(missing)", _ALLOWED.get(name, "a value"))
-    s = str(raw).strip()
-    if len(s) > _MAX_TEXT or _BIG_EXPONENT.search(s):
-        shown = s if len(s) <= 20 else s[:17] + "..."
-        raise InputError(name, repr(shown), _ALLOWED.get(name, "a value") + f" (at most {_MAX_TEXT} characters, exponent < 1000)")
-    return s
+    return str(raw)
 
 
 def _positive(params: Mapping[str, str], name: str, default: str | None = None) -> float:
-    s = _text(params, name, default)
-    try:
-        x = float(parse_number(name, s))
-    except (InputError, OverflowError):
-        raise InputError(name, repr(s), _ALLOWED[name]) from None
-    try:
-        return v.positive(name, x)
-    except InputError:
-        raise InputError(name, s, _ALLOWED[name]) from None
+    """A number > 0 by :func:`pendulab.inputs.positive`, the CLI's parser."""
+    return float(inputs.positive(name, _text(params, name, default), _ALLOWED[name]))
 
 
 def _amplitude(params: Mapping[str, str]) -> float:
-    """``alpha`` in radians from ``0.785``, ``4pi/5`` or ``144deg`` (the CLI's forms)."""
+    """``alpha`` in radians from ``0.785``, ``4pi/5`` or ``144deg`` (the CLI's forms).
+
+    ``unit=deg`` reads a plain number as degrees (``144``); an error then shows the
+    amplitude as typed, without the unit appended.
+    """
+    unit = str(params.get("unit") or "rad").strip().lower()
+    if unit not in ("rad", "deg"):
+        raise InputError("unit", inputs.shown(unit), _ALLOWED["unit"])
     s = _text(params, "amplitude")
+    text = s.strip() + "deg" if unit == "deg" and inputs.is_number(s) else s
     try:
-        angle = parse_angle("amplitude", s)
-        x = float(angle)
-    except (InputError, OverflowError):
-        raise InputError("amplitude", repr(s), _ALLOWED["amplitude"]) from None
-    # pi itself (or more) written exactly rounds to the double below pi: refuse it as written.
-    if not (math.isfinite(x) and 0 <= x < math.pi) or (angle.pi_power == 1 and angle.coef >= 1):
-        raise InputError("amplitude", s, "an angle in [0, pi) rad, that is 0 to 179.99... deg")
-    return x
+        return float(inputs.angle("amplitude", text))
+    except InputError as exc:
+        raise InputError("amplitude", inputs.shown(s.strip()) if s.strip() else exc.value, exc.allowed) from None
 
 
-def _method(params: Mapping[str, str]) -> str:
-    from ..taylor import method_code
-
-    name = _text(params, "method", "taylor2")
-    method_code(name)  # the registry as it is now: methods added later appear by themselves
-    return name
+def _method(params: Mapping[str, str]) -> Method:
+    """The integrator by :func:`pendulab.methods.resolve`: the registry as it is now."""
+    return inputs.method("method", _text(params, "method", "taylor2"))
 
 
 def _points(params: Mapping[str, str], default: int) -> int:
-    s = _text(params, "points", str(default))
-    allowed = f"an integer in [2, {MAX_POINTS}]"
-    try:
-        x = int(s)
-    except ValueError:
-        raise InputError("points", repr(s), allowed) from None
-    if not 2 <= x <= MAX_POINTS:
-        raise InputError("points", s, allowed)
-    return x
+    return inputs.integer("points", _text(params, "points", str(default)), 2, MAX_POINTS)
 
 
-def _steps_needed(name: str, value: float, span: float, step: float, n: float | None = None) -> None:
-    """Refuse a run of more than :data:`MAX_STEPS` steps (``n``, default ``span/step``)."""
-    n = span / step if n is None else n
-    if n > MAX_STEPS:
-        raise InputError(
-            name, f"{value:g}",
-            f"such that at most {MAX_STEPS:.0e} steps are run: here {span:.4g} s / {step:g} s = {n:.3g} steps; "
-            f"use step >= {span / MAX_STEPS:.3g} s",
-        )
+def _unusual(length: float, g: float) -> str:
+    """``"length"`` or ``"g"``: the one further, in decades, from an ordinary pendulum (1 m, 9.81 m/s^2)."""
+    return "length" if abs(math.log10(length)) >= abs(math.log10(g / G)) else "g"
+
+
+def _too_many_steps(span: float, step: float, params: Mapping[str, str] | None = None) -> InputError | None:
+    """The error for a run of more than :data:`MAX_STEPS` steps of ``step`` over ``span`` s, or None.
+
+    Blames the one of ``step`` and ``t_max`` further (in decades) from an ordinary view.
+    """
+    n = span / step
+    if n <= MAX_STEPS:
+        return None
+    if params is not None and abs(math.log10(span / _TYPICAL["t_max"])) > abs(math.log10(_TYPICAL["step"] / step)):
+        return InputError("t_max", inputs.shown(_text(params, "t_max")),
+                          f"<= {MAX_STEPS:.0e} steps of h = {step:g} s, i.e. t_max <= {MAX_STEPS * step:.4g} s "
+                          "(or a larger step)")
+    shown = inputs.shown(_text(params, "step")) if params is not None else f"{step:g}"
+    return InputError("step", shown,
+                      f"such that at most {MAX_STEPS:.0e} steps are run: here {span:.4g} s / {step:g} s = {n:.3g} "
+                      f"steps; use step >= {span / MAX_STEPS:.3g} s")
 
 
 def _finite_list(a: np.ndarray) -> list:
@@ -162,9 +152,12 @@ def parse_simulation(params: Mapping[str, str]) -> dict[str, Any]:
     p = parse_pendulum(params)
     p["step"] = _positive(params, "step")
     p["t_max"] = _positive(params, "t_max")
-    p["method"] = _method(params)
-    _, p["t_max"], p["step"] = v.time_span(0.0, p["t_max"], p["step"])
-    _steps_needed("step", p["step"], p["t_max"], p["step"], step_count(0.0, p["t_max"], p["step"]))
+    p["method"] = _method(params).name
+    if not p["step"] < p["t_max"]:
+        raise InputError("step", inputs.shown(_text(params, "step")), f"< t_max = {p['t_max']:g} s")
+    if err := _too_many_steps(p["t_max"], p["step"], params):
+        raise err
+    step_count(0.0, p["t_max"], p["step"])  # finite: at most MAX_STEPS
     return p
 
 
@@ -194,7 +187,11 @@ def estimate_view(length: float, amplitude: float, step: float, g: float, method
 
     exact = float(agm_period(length, amplitude, g))
     span = default_t_max(exact, step)
-    _steps_needed("step", step, span, step)
+    if span / step > MAX_STEPS:  # the period is too long for this step: say so, keep the rest
+        hint = f"; use step >= {span / MAX_STEPS:.3g} s" if span / MAX_STEPS < exact / 20 else ""
+        return {"estimate": None, "reason": (
+            f"the period search would run {span / step:.3g} steps of h = {step:g} s to reach 1.5 T + 4h = {span:.4g} s, "
+            f"more than the {MAX_STEPS:.0e} allowed{hint}")}
     try:
         e = estimate_period(length, amplitude, step, g=g, method=method)
     except PendulabError as exc:  # no return, went over the top, amplitude 0: a result, not a bad request
@@ -278,34 +275,38 @@ def trajectory_csv(params: Mapping[str, str]) -> tuple[str, str]:
     return "\n".join(lines) + "\n", name
 
 
+#: 10^-1 .. 10^-4, four per decade: the range of problem 3(c) and a decade above.
+_DEFAULT_STEPS = tuple(float(10 ** (-k / 4)) for k in range(4, 17))
+
+
 def _step_list(params: Mapping[str, str]) -> list[float]:
     s = params.get("steps")
     if s is None or not str(s).strip():
-        # 10^-1 .. 10^-4, four per decade: the range of problem 3(c) and a decade above.
-        return [float(10 ** (-k / 4)) for k in range(4, 17)]
-    items = [x.strip() for x in str(s).split(",") if x.strip()]
+        return list(_DEFAULT_STEPS)
     allowed = f"a comma-separated list of 1 to {MAX_SWEEP} steps > 0 (s)"
-    if not 1 <= len(items) <= MAX_SWEEP:
-        raise InputError("steps", f"{len(items)} values", allowed)
-    out = []
-    for item in items:
-        try:
-            out.append(_positive({"step": item}, "step"))
-        except InputError:
-            raise InputError("steps", repr(item[:20]), allowed) from None
-    return out
+    parts = inputs.items("steps", s, allowed, max_items=10**6)
+    if len(parts) > MAX_SWEEP:
+        raise InputError("steps", f"{len(parts)} values", allowed)
+    return [float(x) for x in inputs.parse_list("steps", s, inputs.positive, allowed, MAX_SWEEP)]
 
 
 def convergence_view(params: Mapping[str, str]) -> dict[str, Any]:
     """``GET /api/convergence``: the period estimates and their errors for a list of steps."""
     from ..crossing import default_t_max
-    from ..taylor import METHODS
 
     p = parse_pendulum(params)
     method = _method(params)
     steps = sorted(set(_step_list(params)), reverse=True)
     exact = period_view(p["length"], p["amplitude"], p["g"])
     total = sum(default_t_max(exact["exact"], h, 0.0) / h for h in steps)
+    if default_t_max(exact["exact"], _DEFAULT_STEPS[0], 0.0) / _DEFAULT_STEPS[0] > MAX_STEPS:
+        # Even the default list's largest step cannot reach the first return: the period is too long.
+        name = _unusual(p["length"], p["g"])
+        raise InputError(
+            name, inputs.shown(_text(params, name, DEFAULTS["g"])),
+            f"such that the period search (1.5 T + 4h, T = {exact['exact']:.3g} s) fits in {MAX_STEPS:.0e} "
+            f"steps of h = {_DEFAULT_STEPS[0]:g} s",
+        )
     if total > MAX_STEPS:
         raise InputError(
             "steps", f"{min(steps):g} (smallest)",
@@ -313,17 +314,17 @@ def convergence_view(params: Mapping[str, str]) -> dict[str, Any]:
         )
     rows = []
     for h in steps:
-        est = estimate_view(p["length"], p["amplitude"], h, p["g"], method)
+        est = estimate_view(p["length"], p["amplitude"], h, p["g"], method.name)
         rows.append({"step": h} | est)
-    return {"method": method, "order": METHODS[method][1], "period": exact, "rows": rows}
+    return {"method": method.name, "order": method.order, "period": exact, "rows": rows}
 
 
 def config_view() -> dict[str, Any]:
     """``GET /api/config``: the methods the library has now, g presets, limits, defaults."""
-    from ..taylor import METHODS
+    from ..methods import menu
 
     return {
-        "methods": [{"name": name, "order": order} for name, (_, order) in METHODS.items()],
+        "methods": [{"name": m.name, "order": m.order, "description": m.description} for m in menu()],
         "g_presets": G_PRESETS,
         "limits": {"max_steps": MAX_STEPS, "max_points": MAX_POINTS, "plot_points": DEFAULT_PLOT_POINTS},
         "defaults": DEFAULTS,

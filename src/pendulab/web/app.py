@@ -5,7 +5,7 @@ Routes
 ``GET /``                     the explorer page (``static/index.html``)
 ``GET /static/{file}``        the page's own script and style
 ``GET /vendor/plotly.min.js`` plotly.js, read at run time from the installed ``plotly`` package
-``GET /api/config``           methods in :data:`pendulab.taylor.METHODS` now, g presets, limits
+``GET /api/config``           the methods of :mod:`pendulab.methods` now, g presets, limits
 ``GET /api/period``           exact (AGM) and small-angle periods
 ``GET /api/simulate``         trajectory (thinned for plotting), exact period, estimates
 ``GET /api/convergence``      period estimates and their errors over a list of steps
@@ -20,9 +20,9 @@ import logging
 from collections.abc import Callable
 from importlib import resources
 from pathlib import Path
-from typing import Any
+from typing import Annotated, Any
 
-from fastapi import FastAPI, Request
+from fastapi import FastAPI, Query, Request
 from fastapi.exceptions import RequestValidationError
 from fastapi.responses import FileResponse, JSONResponse, Response
 from starlette.exceptions import HTTPException as StarletteHTTPException
@@ -45,11 +45,29 @@ def error_body(exc: InputError) -> dict[str, Any]:
     return {"error": {"field": exc.name, "value": value, "allowed": exc.allowed, "message": str(exc)}}
 
 
-def _json(call: Callable[[dict[str, str]], Any], request: Request) -> Response:
+def _json(call: Callable[[dict[str, str]], Any], params: dict[str, str | None]) -> Response:
     try:
-        return JSONResponse(call(dict(request.query_params)))
+        return JSONResponse(call(_given(params)))
     except InputError as exc:
         return JSONResponse(error_body(exc), status_code=422)
+
+
+def _given(params: dict[str, str | None]) -> dict[str, str]:
+    """The query parameters that were sent (the library's parsers judge their text)."""
+    return {k: v for k, v in params.items() if v is not None}
+
+
+# Typed query parameters: OpenAPI lists them; their text is parsed by pendulab.inputs, the
+# CLI's parser, so a value is judged the same way in the page and in a terminal.
+Length = Annotated[str | None, Query(description="Pendulum length l > 0, m: 3.5, 1e-2, 7/2")]
+Amplitude = Annotated[str | None, Query(description="Amplitude in [0, pi): 0.785, pi/4, 4pi/5, 144deg, 144°")]
+Unit = Annotated[str | None, Query(description="rad (default) or deg: the unit of a plain-number amplitude")]
+Gravity = Annotated[str | None, Query(description="g > 0, m/s^2 (default 9.80665)")]
+Step = Annotated[str | None, Query(description="Step h > 0, s: 1e-3")]
+TMax = Annotated[str | None, Query(description="End time t_max > step, s: 20")]
+MethodName = Annotated[str | None, Query(description="Integrator: taylor2 (default), rk4, verlet, taylor:P (P in 1..30)")]
+Points = Annotated[str | None, Query(description="At most this many points returned (evenly thinned), 2..1000000")]
+Steps = Annotated[str | None, Query(description="Steps h, comma-separated, 1 to 40 (default 13 steps from 0.1 to 1e-4)")]
 
 
 def create_app() -> FastAPI:
@@ -78,21 +96,29 @@ def create_app() -> FastAPI:
         return JSONResponse(api.config_view())
 
     @app.get("/api/period")
-    def period(request: Request) -> Response:
-        return _json(api.period_endpoint, request)
+    def period(length: Length = None, amplitude: Amplitude = None, unit: Unit = None, g: Gravity = None) -> Response:
+        return _json(api.period_endpoint, {"length": length, "amplitude": amplitude, "unit": unit, "g": g})
 
     @app.get("/api/simulate")
-    def simulate(request: Request) -> Response:
-        return _json(api.simulate_view, request)
+    def simulate(length: Length = None, amplitude: Amplitude = None, unit: Unit = None, g: Gravity = None,
+                 step: Step = None, t_max: TMax = None, method: MethodName = None, points: Points = None) -> Response:
+        return _json(api.simulate_view, {"length": length, "amplitude": amplitude, "unit": unit, "g": g,
+                                             "step": step, "t_max": t_max, "method": method, "points": points})
 
     @app.get("/api/convergence")
-    def convergence(request: Request) -> Response:
-        return _json(api.convergence_view, request)
+    def convergence(length: Length = None, amplitude: Amplitude = None, unit: Unit = None, g: Gravity = None,
+                    method: MethodName = None, steps: Steps = None) -> Response:
+        return _json(api.convergence_view, {"length": length, "amplitude": amplitude, "unit": unit, "g": g,
+                                                "method": method, "steps": steps})
 
     @app.get("/api/trajectory.csv")
-    def trajectory_csv(request: Request) -> Response:
+    def trajectory_csv(length: Length = None, amplitude: Amplitude = None, unit: Unit = None, g: Gravity = None,
+                       step: Step = None, t_max: TMax = None, method: MethodName = None,
+                       points: Points = None) -> Response:
+        params = {"length": length, "amplitude": amplitude, "unit": unit, "g": g, "step": step, "t_max": t_max,
+                  "method": method, "points": points}
         try:
-            text, name = api.trajectory_csv(dict(request.query_params))
+            text, name = api.trajectory_csv(_given(params))
         except InputError as exc:
             return JSONResponse(error_body(exc), status_code=422)
         return Response(text, media_type="text/csv", headers={"Content-Disposition": f'attachment; filename="{name}"'})

@@ -1,0 +1,354 @@
+"""Every value a person types, parsed in one place.
+
+The CLI's parameter types (:mod:`pendulab.cli._common`) and the web API's query
+parameters (:mod:`pendulab.web.api`) both call these functions, so a value is judged the
+same way wherever it is typed. Each function takes the argument's ``name`` and the text,
+and returns the value or raises :class:`~pendulab.errors.InputError` naming the argument,
+the text (shortened if long, quoted if unprintable) and what is allowed.
+
+The grammar
+-----------
+number
+    ``3.5``, ``-2``, ``.5``, ``2e-3``, ``1/3``: ASCII digits only (``１`` or ``²`` are
+    refused everywhere), kept exactly (:class:`~pendulab.exact.Exact`). At most
+    :data:`MAX_TEXT` characters and a decimal exponent of at most :data:`MAX_EXPONENT`:
+    the exact value is then built in microseconds (``1e-99999999`` would never finish).
+    A number whose double overflows, or is subnormal where a positive number is asked
+    for, is refused: the library would compute with infinity or with lost digits.
+angle
+    ``0.785``, ``0.785rad``, ``pi/4``, ``4pi/5``, ``4*pi/5``, ``π/4``, ``45deg``,
+    ``45 degrees``, ``45°``; radians unless a unit says otherwise.
+quantity
+    a number with an optional unit suffix: ``115.2cm``, ``1.152 m``, ``2ms``.
+list
+    items separated by commas, spaces, or both (``1e-2,1e-3``, ``1e-2 1e-3``,
+    ``1e-2, 1e-3``); an empty item (``1e-2,,1e-3``, a trailing comma) is refused.
+student numbers
+    a list (as above) of positive integers of 1 to 18 ASCII digits.
+method
+    a name of :mod:`pendulab.methods` (``taylor2``, ``rk4``, ``verlet``, ``taylor:P``).
+output path
+    a file name with one of the allowed extensions, in an existing writable folder:
+    checked before any work is done.
+"""
+from __future__ import annotations
+
+import math
+import os
+import re
+from collections.abc import Callable, Iterable
+from fractions import Fraction
+from pathlib import Path
+from typing import TypeVar
+
+from .errors import InputError
+from .exact import Exact
+
+T = TypeVar("T")
+
+#: The longest single value accepted, characters (a double needs at most 25).
+MAX_TEXT = 64
+#: The longest list accepted, characters.
+MAX_LIST_TEXT = 4096
+#: The largest decimal exponent accepted (``1e400`` is already far beyond the doubles).
+MAX_EXPONENT = 400
+#: The most items in one list.
+MAX_ITEMS = 1000
+#: Digits of one student number.
+MAX_STUDENT_DIGITS = 18
+#: The smallest positive normal double and the largest double.
+TINY = 2.2250738585072014e-308
+HUGE = 1.7976931348623157e308
+
+_NUM = r"[+-]?(?:[0-9]+(?:\.[0-9]*)?|\.[0-9]+)(?:[eE][+-]?[0-9]+)?"
+_FLAGS = re.ASCII | re.IGNORECASE
+_EXPONENT = re.compile(r"[eE]([+-]?[0-9]+)$", re.ASCII)
+_RATIO = re.compile(rf"(?P<num>{_NUM})(?:\s*/\s*(?P<den>{_NUM}))?", _FLAGS)
+_PI_FORM = re.compile(
+    rf"(?P<num>{_NUM}|[+-])?\s*\*?\s*(?:pi|π)\s*(?:\*\s*(?P<mul>{_NUM}))?\s*(?:/\s*(?P<den>{_NUM}))?", _FLAGS
+)
+_DEG_FORM = re.compile(rf"(?P<num>{_NUM}(?:\s*/\s*{_NUM})?)\s*(?:deg|degrees?|°)", _FLAGS)
+_RAD_FORM = re.compile(rf"(?P<num>{_NUM}(?:\s*/\s*{_NUM})?)\s*(?:rad|radians?)", _FLAGS)
+_QUANTITY = re.compile(rf"(?P<num>{_NUM})\s*(?P<unit>[a-z]*)", _FLAGS)
+_SEPARATOR = re.compile(r"\s*,\s*|\s+")
+
+NUMBER_WORDS = "a number such as 3.5, 2e-3 or 1/3"
+ANGLE_WORDS = "an angle such as 0.785, pi/4, 4pi/5, 45deg or 45°"
+
+
+# --------------------------------------------------------------------------- text
+def shown(text: object) -> str:
+    """``text`` as an error message shows it: as typed when short and printable, else quoted."""
+    s = str(text)
+    if len(s) > 40:
+        return repr(s[:37] + "...")
+    return s if s and s.isprintable() and s == s.strip() else repr(s)
+
+
+def clean(name: str, text: object, allowed: str, max_len: int = MAX_TEXT) -> str:
+    """The stripped text, or an error: missing, empty, too long, or with non-ASCII digits."""
+    if text is None:
+        raise InputError(name, "(missing)", allowed)
+    s = str(text).strip()
+    if not s:
+        raise InputError(name, "(empty)", allowed)
+    if len(s) > max_len:
+        raise InputError(name, shown(s), f"{allowed} (at most {max_len} characters)")
+    if any(c.isnumeric() and not c.isascii() for c in s):
+        raise InputError(name, shown(s), f"{allowed}, written with the digits 0-9")
+    return s
+
+
+def _decimal(literal: str) -> Fraction:
+    """The exact value of one decimal literal; ``ValueError`` past the exponent cap."""
+    m = _EXPONENT.search(literal)
+    if m and abs(int(m.group(1))) > MAX_EXPONENT:
+        raise ValueError(literal)
+    return Fraction(literal)
+
+
+def _ratio(text: str) -> Fraction | None:
+    """``a`` or ``a/b`` exactly; None when ``text`` is not of that form (or ``b = 0``)."""
+    m = _RATIO.fullmatch(text)
+    if not m:
+        return None
+    try:
+        value = _decimal(m["num"])
+        if m["den"] is not None:
+            den = _decimal(m["den"])
+            if den == 0:
+                return None
+            value /= den
+    except ValueError:
+        return None
+    return value
+
+
+def is_number(text: object) -> bool:
+    """Whether ``text`` is a plain number or ratio (``144``, ``1/3``), no unit, no pi."""
+    return _ratio(str(text).strip()) is not None
+
+
+# --------------------------------------------------------------------------- numbers
+def real(name: str, text: object, allowed: str = NUMBER_WORDS) -> Exact:
+    """A finite real number (``3.5``, ``-2e-3``, ``1/3``), kept exactly."""
+    s = clean(name, text, allowed)
+    value = _ratio(s)
+    if value is None:
+        raise InputError(name, shown(s), allowed)
+    x = Exact(value, 0, s)
+    if not math.isfinite(float(x)):
+        raise InputError(name, shown(s), f"{allowed}, of magnitude at most {HUGE:.4g}")
+    return x
+
+
+def positive(name: str, text: object, allowed: str = "a finite number > 0") -> Exact:
+    """A number > 0 whose double is normal: between 2.2e-308 and 1.8e308."""
+    x = real(name, text, allowed)
+    if x.coef <= 0:
+        raise InputError(name, shown(x.text), allowed)
+    if not TINY <= float(x) <= HUGE:
+        raise InputError(name, shown(x.text), f"{allowed}, between {TINY:.4g} and {HUGE:.4g}")
+    return x
+
+
+def non_negative(name: str, text: object, allowed: str = "a finite number >= 0") -> Exact:
+    """A number >= 0: 0, or a number between 2.2e-308 and 1.8e308."""
+    x = real(name, text, allowed)
+    if x.coef < 0:
+        raise InputError(name, shown(x.text), allowed)
+    if x.coef != 0 and not TINY <= float(x) <= HUGE:
+        raise InputError(name, shown(x.text), f"{allowed}, 0 or between {TINY:.4g} and {HUGE:.4g}")
+    return x
+
+
+def integer(name: str, text: object, low: int, high: int) -> int:
+    """An integer in ``[low, high]``; ``1e5`` is the integer 100000, ``2.5`` is refused."""
+    allowed = f"an integer in [{low}, {high}]"
+    s = clean(name, text, allowed)
+    value = _ratio(s)
+    if value is None or value.denominator != 1 or not low <= value <= high:
+        raise InputError(name, shown(s), allowed)
+    return int(value)
+
+
+def quantity(name: str, text: object, units: dict[str, Fraction], default_unit: str, strict: bool) -> Exact:
+    """A number with an optional unit suffix, in the first unit of ``units`` (SI).
+
+    ``quantity("length", "115.2cm", {"m": 1, "cm": 1/100}, "m", True)`` is 1.152 m exactly.
+    ``strict``: ``> 0``; else ``>= 0``.
+    """
+    allowed = (f"a finite number {'> 0' if strict else '>= 0'}, "
+               f"in {' or '.join(units)} (default {default_unit})")
+    s = clean(name, text, allowed)
+    m = _QUANTITY.fullmatch(s)
+    unit = (m["unit"] or default_unit) if m else None
+    if not m or unit not in units:
+        raise InputError(name, shown(s), allowed)
+    try:
+        value = _decimal(m["num"]) * units[unit]
+    except ValueError:
+        raise InputError(name, shown(s), allowed) from None
+    x = Exact(value, 0, s)
+    ok = value > 0 and TINY <= float(x) <= HUGE  # the range rules of positive()
+    if not (ok or (not strict and value == 0)):
+        raise InputError(name, shown(s), allowed)
+    return x
+
+
+# --------------------------------------------------------------------------- angles
+def angle_value(name: str, text: object) -> Exact:
+    """Any angle, exactly, in radians: ``0.785``, ``pi/4``, ``4pi/5``, ``45deg``, ``45°``."""
+    s = clean(name, text, ANGLE_WORDS)
+    try:
+        if m := _PI_FORM.fullmatch(s):
+            coef = Fraction(1)
+            if m["num"] in ("+", "-"):
+                coef = Fraction(-1 if m["num"] == "-" else 1)
+            elif m["num"] is not None:
+                coef *= _decimal(m["num"])
+            if m["mul"] is not None:
+                coef *= _decimal(m["mul"])
+            if m["den"] is not None:
+                coef /= _decimal(m["den"])
+            return Exact(coef, 1, s)
+        if m := _DEG_FORM.fullmatch(s):
+            value = _ratio(m["num"])
+            if value is not None:
+                return Exact(value / 180, 1, s)
+        elif m := _RAD_FORM.fullmatch(s):
+            value = _ratio(m["num"])
+            if value is not None:
+                return Exact(value, 0, s)
+        elif (value := _ratio(s)) is not None:
+            return Exact(value, 0, s)
+    except (ValueError, ZeroDivisionError):
+        pass
+    raise InputError(name, shown(s), ANGLE_WORDS)
+
+
+def angle(name: str, text: object, open_low: bool = False) -> Exact:
+    """An angle in ``[0, pi)`` (``open_low``: in ``(0, pi)``), checked on the exact value.
+
+    ``pi`` itself written exactly (``pi``, ``180deg``) rounds to the double below pi; it
+    is refused as written, and so is any value whose double is not below ``math.pi``.
+    """
+    lo = "(0" if open_low else "[0"
+    allowed = f"an angle in {lo}, pi) rad such as 0.785, pi/4, 4pi/5, 45deg or 45°"
+    try:
+        x = angle_value(name, text)
+    except InputError as exc:
+        raise InputError(name, exc.value, allowed + exc.allowed[len(ANGLE_WORDS):]) from None
+    if x.coef < 0 or (open_low and x.coef == 0) or (x.pi_power == 1 and x.coef >= 1):
+        raise InputError(name, shown(x.text), allowed)
+    value = float(x)
+    if not (0 <= value < math.pi) or (open_low and value == 0):
+        raise InputError(name, shown(x.text), allowed)
+    return x
+
+
+# --------------------------------------------------------------------------- lists
+def items(name: str, text: object, allowed: str, max_items: int = MAX_ITEMS) -> list[str]:
+    """The items of a list separated by commas, spaces or both; no empty item."""
+    s = clean(name, text, allowed, MAX_LIST_TEXT)
+    parts = _SEPARATOR.split(s)
+    if any(not p for p in parts):
+        raise InputError(name, shown(s), f"{allowed}, with no empty item (doubled or trailing comma)")
+    if len(parts) > max_items:
+        raise InputError(name, f"{len(parts)} items", f"{allowed}, at most {max_items} items")
+    return parts
+
+
+def parse_list(name: str, text: object, parse: Callable[[str, str], T], allowed: str,
+               max_items: int = MAX_ITEMS) -> list[T]:
+    """``[parse(name, item) for item in items(...)]``; an item's error names the item, in the list's words."""
+    out = []
+    for part in items(name, text, allowed, max_items):
+        try:
+            out.append(parse(name, part))
+        except InputError as exc:
+            raise InputError(name, exc.value, f"{allowed}; this item is not ({exc.allowed})") from None
+    return out
+
+
+def positive_list(name: str, text: object, max_items: int = MAX_ITEMS) -> list[float]:
+    """Numbers > 0 separated by commas or spaces: ``1e-2,1e-3,1e-4``."""
+    return [float(x) for x in parse_list(name, text, positive, "a list of numbers > 0 such as 1e-2,1e-3",
+                                         max_items)]
+
+
+def integer_list(name: str, text: object, low: int, high: int, max_items: int = MAX_ITEMS) -> list[int]:
+    """Integers in ``[low, high]`` separated by commas or spaces: ``1,10,1e3``."""
+    return parse_list(name, text, lambda n, s: integer(n, s, low, high),
+                      f"a list of integers in [{low}, {high:.0e}]", max_items)
+
+
+def students(name: str, texts: object) -> tuple[int, ...]:
+    """Student numbers: ``262,407,634``, ``262 407 634``, or several texts of either form.
+
+    Each is a positive integer of 1 to :data:`MAX_STUDENT_DIGITS` ASCII digits.
+    """
+    allowed = (f"student numbers: positive integers of 1 to {MAX_STUDENT_DIGITS} digits 0-9, "
+               "separated by commas or spaces, such as 262,407,634")
+    if isinstance(texts, (list, tuple)):
+        texts = " ".join(str(t).strip() for t in texts)
+    parts = items(name, texts, allowed, 100)
+    for p in parts:
+        if not (p.isascii() and p.isdigit() and len(p) <= MAX_STUDENT_DIGITS and int(p) > 0):
+            raise InputError(name, shown(p), allowed)
+    return tuple(int(p) for p in parts)
+
+
+# --------------------------------------------------------------------------- names, paths
+def method(name: str, text: object):
+    """An integrator of :mod:`pendulab.methods`: ``taylor2``, ``rk4``, ``verlet``, ``taylor:P``."""
+    from . import methods
+
+    s = clean(name, text, methods.allowed())
+    return methods.resolve(s, name)
+
+
+def angle_range(name: str, text: object, max_count: int) -> list[float]:
+    """``START:STOP:COUNT`` (COUNT evenly spaced angles, ends included) or one angle; in (0, pi)."""
+    allowed = (f"START:STOP:COUNT with 0 < START < STOP < pi and COUNT an integer in [2, {max_count}], "
+               "or one angle in (0, pi), such as 1deg:179deg:1000")
+    s = clean(name, text, allowed)
+    parts = s.split(":")
+    try:
+        if len(parts) == 1:
+            return [float(angle(name, s, open_low=True))]
+        if len(parts) == 3:
+            start = float(angle(name, parts[0], open_low=True))
+            stop = float(angle(name, parts[1], open_low=True))
+            count = integer(name, parts[2], 2, max_count)
+            if not start < stop:
+                raise InputError(name, shown(s), allowed + " (the range is empty or reversed)")
+            step = (stop - start) / (count - 1)  # numpy.linspace's arithmetic, bit for bit
+            return [start + i * step for i in range(count - 1)] + [stop]
+    except InputError as exc:
+        if "reversed" in exc.allowed:
+            raise
+    raise InputError(name, shown(s), allowed)
+
+
+def output_path(name: str, text: object, extensions: Iterable[str]) -> Path:
+    """A file to write: one of ``extensions`` (``".png"``), in an existing writable folder.
+
+    Checked before any work, so a run never computes for minutes and then fails to save.
+    """
+    from ._atomic import check_writable
+
+    exts = tuple(e.lower() for e in extensions)
+    allowed = f"a file name ending in {', '.join(exts[:-1]) + ' or ' if len(exts) > 1 else ''}{exts[-1]}"
+    s = "" if text is None else os.fspath(text)
+    if not s.strip():
+        raise InputError(name, "(empty)", allowed)
+    if len(s) > 4096 or "\0" in s:
+        raise InputError(name, shown(s), allowed)
+    try:
+        p = check_writable(name, s)
+    except OSError as exc:  # a name too long for the file system, and the like
+        raise InputError(name, shown(s), f"{allowed}, a path this system accepts ({exc.strerror})") from None
+    if p.suffix.lower() not in exts:
+        raise InputError(name, shown(s), allowed)
+    return p
