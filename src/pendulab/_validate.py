@@ -116,9 +116,10 @@ def period_scale(length: float, g: float) -> float:
     t0 = 2 * math.pi * sqrt_ratio(length, g)
     if not t0 <= MAX_PERIOD:
         # Blame the input further from an ordinary pendulum (1 m, 9.81 m/s^2) in decades.
+        q = MAX_PERIOD / (2 * math.pi)  # products, not q**2: a float product overflows to inf, ** raises
         if abs(math.log10(length)) >= abs(math.log10(g / 9.80665)):
-            limit = (MAX_PERIOD / (2 * math.pi)) ** 2 * g
+            limit = q * (q * g)
             raise InputError("length", length, f"<= {limit:.3g} m for g = {g:g} (period 2 pi sqrt(l/g) <= {MAX_PERIOD:g} s)")
-        limit = length / (MAX_PERIOD / (2 * math.pi)) ** 2
+        limit = length / q / q
         raise InputError("g", g, f">= {limit:.3g} m/s^2 for length = {length:g} (period 2 pi sqrt(l/g) <= {MAX_PERIOD:g} s)")
     return t0

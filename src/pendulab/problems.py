@@ -431,6 +431,11 @@ def problem4(
         raise InputError("step", step, f"<= t_max/{len(TRIG_BASIS) - 1} = {t_end / (len(TRIG_BASIS) - 1):.6g} s "
                          f"so that the data has at least {len(TRIG_BASIS)} points, one per coefficient of (10)")
     data = simulate(length, amplitude, step, t_max, 0.0, g)
+    if not np.all(np.isfinite(data.theta)):
+        raise NumericalError(
+            f"the Taylor data overflowed (theta is not finite): step h = {data.step:g} s is too large for "
+            f"g/l = {data.g / data.length:.3g} 1/s^2; use h well below sqrt(l/g) = {(data.length / data.g) ** 0.5:.3g} s"
+        )
     fit = least_squares(data.t, data.theta, decimals=decimals)
     terms = " + ".join(f"{n} {lab}" if lab != "1" else n for n, lab in zip(fit.names, TRIG_LABELS))
     objective = f"E({', '.join(fit.names)}) = sum_(j=0)^({len(data.t) - 1}) (z1_j - ({terms})|_(t=t_j))^2"

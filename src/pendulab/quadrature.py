@@ -232,8 +232,12 @@ def substituted_integrand(alpha: float, reflected: bool = False) -> Callable[[np
 
 
 def period_prefactor(length: float, g: float) -> float:
-    """``4 sqrt(l/(2g))``, the factor in front of the integral in (1)."""
-    return 4 * math.sqrt(length / (2 * g))
+    """``4 sqrt(l/(2g))``, the factor in front of the integral in (1).
+
+    ``(l/2)/g`` equals ``l/(2g)`` bit for bit (halving is exact); :func:`_validate.sqrt_ratio`
+    keeps the root finite where the quotient overflows.
+    """
+    return 4 * v.sqrt_ratio(0.5 * length, g)
 
 
 def quadrature_period(length, amplitude, n: int, g=G, substitution: bool = False, rule: Rule = GAUSS3,
@@ -256,6 +260,7 @@ def quadrature_period(length, amplitude, n: int, g=G, substitution: bool = False
     length = v.positive("length", length)
     alpha = v.amplitude("amplitude", amplitude)
     g = v.positive("g", g)
+    v.period_scale(length, g)  # refuses a period beyond the doubles, naming length or g
     n = v.integer("n", n, 1, MAX_N)
     if alpha == 0:
         return 2 * math.pi * math.sqrt(length / g)  # the limit of (1) as alpha -> 0

@@ -198,6 +198,33 @@ def _check_steps(steps: Any) -> list[float]:
     return [v.positive("step", h) for h in steps]
 
 
+#: The most steps of all pendulums together (minutes of work on a few cores).
+MAX_TOTAL_STEPS = 10**11
+
+
+def _check_work(alpha: np.ndarray, length: np.ndarray, g: float, steps: list[float], methods: int) -> None:
+    """Refuse by arithmetic, before any allocation, a step no pendulum search can take or a sweep too long.
+
+    Each pendulum runs to ``1.5 T + 4h`` (:func:`pendulab.crossing.default_t_max`): at most
+    :data:`pendulab.taylor.MAX_STEPS` steps each, :data:`MAX_TOTAL_STEPS` in all.
+    """
+    from .crossing import default_t_max
+    from .taylor import MAX_STEPS
+
+    periods = np.asarray(agm_period(length, alpha, g), dtype=float)
+    longest, total_time = float(periods.max()), float(periods.sum())
+    total = 0.0
+    for h in steps:
+        n = default_t_max(longest, h) / h
+        if not n <= MAX_STEPS:
+            raise InputError("step", h, f">= {default_t_max(longest, h) / MAX_STEPS:.3g} s: the longest period "
+                             f"({longest:.4g} s) needs 1.5 T / h steps, at most {MAX_STEPS:.0e}")
+        total += methods * (1.5 * total_time + 4 * h * len(periods)) / h
+    if not total <= MAX_TOTAL_STEPS:
+        raise InputError("step", min(steps), f"such that the sweep runs at most {MAX_TOTAL_STEPS:.0e} steps in all "
+                         f"(these need {total:.3g}); use larger steps, or fewer amplitudes or methods")
+
+
 def sweep(
     amplitudes: Any,
     steps: Any,
@@ -257,6 +284,7 @@ def sweep(
     hs = _check_steps(steps)
     ms = _check_methods(methods)
     chunk = v.integer("chunk", chunk, 1)
+    _check_work(alpha, length, g, hs, len(ms))
     bounds = [(i, min(i + chunk, len(alpha))) for i in range(0, len(alpha), chunk)]
     jobs = [(name, code, order, h, lo, hi) for name, code, order in ms for h in hs for lo, hi in bounds]
 

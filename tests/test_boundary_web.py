@@ -1,0 +1,123 @@
+"""The web API's input boundary: no query value crashes the server.
+
+Property (Hypothesis, the grammar of ``hostile.py``): for every endpoint of the API and
+every query parameter it declares (read from the app's OpenAPI schema, so a parameter
+added later is covered), a hostile value gives status 200 or 422, never 500; a 422 names
+that parameter (or, for a value that is fine alone, the other one it conflicts with) and
+the server still answers afterwards.
+"""
+from __future__ import annotations
+
+import math
+
+import pytest
+from fastapi.testclient import TestClient
+from hypothesis import HealthCheck, given, settings
+from hypothesis import strategies as st
+
+from hostile import HOSTILE
+from pendulab.web import create_app
+
+#: Light values for the other parameters, so a hostile value that happens to be valid runs fast.
+BASE = {"length": "1", "amplitude": "1", "step": "0.01", "t_max": "2", "steps": "1e-2", "points": "50"}
+
+
+@pytest.fixture(scope="module")
+def client():
+    return TestClient(create_app(), raise_server_exceptions=False)
+
+
+def endpoints() -> dict[str, list[str]]:
+    """``{path: [query parameter names]}`` of every GET route under /api, from the OpenAPI schema."""
+    schema = create_app().openapi()
+    return {path: [p["name"] for p in op["get"].get("parameters", []) if p["in"] == "query"]
+            for path, op in schema["paths"].items() if path.startswith("/api/") and "get" in op}
+
+
+def test_openapi_lists_every_parameter():
+    found = endpoints()
+    assert set(found["/api/period"]) == {"length", "amplitude", "unit", "g"}
+    assert set(found["/api/simulate"]) == {"length", "amplitude", "unit", "g", "step", "t_max", "method", "points"}
+    assert set(found["/api/trajectory.csv"]) == set(found["/api/simulate"])
+    assert set(found["/api/convergence"]) == {"length", "amplitude", "unit", "g", "method", "steps"}
+
+
+CASES = [(path, name) for path, names in endpoints().items() for name in names]
+
+
+def check(client, path: str, query: dict[str, str], names: set[str]) -> None:
+    r = client.get(path, params=query)
+    assert r.status_code in (200, 422), (path, query, r.status_code, r.text[:300])
+    if r.status_code == 422:
+        err = r.json()["error"]
+        assert err["field"] in names, (path, query, err)
+        assert "\n" not in err["message"] and err["message"].startswith(f"{err['field']} = ")
+    elif path != "/api/trajectory.csv":
+        body = r.json()  # strict JSON: a NaN or an infinity would have failed to encode
+        assert isinstance(body, dict)
+    assert client.get("/api/config").status_code == 200  # still answering
+
+
+@settings(max_examples=300, deadline=10_000, suppress_health_check=[HealthCheck.function_scoped_fixture])
+@given(case=st.sampled_from(CASES), value=HOSTILE)
+def test_hostile_value_in_any_parameter(client, case, value):
+    path, name = case
+    # step and t_max judge each other, and the pendulum bounds the period search.
+    related = {"step": {"t_max"}, "t_max": {"step"}, "length": {"g"}, "g": {"length"}}.get(name, set())
+    check(client, path, BASE | {name: value}, {name} | related)
+
+
+@settings(max_examples=100, deadline=10_000, suppress_health_check=[HealthCheck.function_scoped_fixture])
+@given(path=st.sampled_from(sorted(p for p, names in endpoints().items() if len(names) >= 2)), data=st.data())
+def test_several_hostile_values_at_once(client, path, data):
+    names = endpoints()[path]
+    chosen = data.draw(st.lists(st.sampled_from(names), min_size=2, max_size=4, unique=True), label="parameters")
+    query = BASE | {n: data.draw(HOSTILE, label=n) for n in chosen}
+    check(client, path, query, set(names) | {"steps"})
+
+
+# ------------------------------------------------------------------ the reported cases, one by one
+
+@pytest.mark.parametrize("query, field", [
+    ({"g": "1e-320"}, "g"),
+    ({"length": "1e308", "g": "1e-308"}, "g"),
+    ({"length": "1e-308", "g": "1e308"}, "length"),
+    ({"step": "1e-320"}, "step"),
+    ({"t_max": "1e308"}, "t_max"),
+    ({"t_max": "1e6"}, "t_max"),
+    ({"step": "100"}, "step"),
+])
+def test_reported_cases_name_the_right_field(client, query, field):
+    r = client.get("/api/simulate", params=BASE | query)
+    assert r.status_code == 422 and r.json()["error"]["field"] == field, r.text
+    if query == {"step": "100"}:
+        assert "t0" not in r.json()["error"]["message"]
+
+
+def test_convergence_takes_every_method_the_api_takes(client):
+    r = client.get("/api/convergence", params={"length": "1", "amplitude": "1", "steps": "1e-2", "method": "taylor:4"})
+    assert r.status_code == 200 and r.json()["order"] == 4 and r.json()["method"] == "taylor:4"
+
+
+def test_long_periods_are_answered_without_an_estimate(client):
+    # l = 1e300 m: T = 2 pi sqrt(l/g) ~ 2e150 s, computed right; no simulation reaches it.
+    r = client.get("/api/simulate", params=BASE | {"length": "1e300"})
+    assert r.status_code == 200
+    body = r.json()
+    t0 = 2 * math.pi * math.sqrt(1e300 / 9.80665)
+    assert body["period"]["small_angle"] == pytest.approx(t0, rel=1e-15)
+    assert body["period"]["estimate"] is None and "1e+07" in body["period"]["reason"]
+
+
+def test_extreme_ratio_period_is_computed_right(client):
+    # sqrt(l)/sqrt(g) where l/g underflows: l = 1e-300, g = 1e300 gives T0 = 2 pi 1e-300 s, not 0.
+    body = client.get("/api/period", params={"length": "1e-300", "amplitude": "0", "g": "1e300"}).json()
+    assert body["small_angle"] == pytest.approx(2 * math.pi * 1e-300, rel=1e-15)
+    assert body["exact"] == body["small_angle"]
+
+
+def test_degrees_are_echoed_as_typed(client):
+    r = client.get("/api/period", params={"length": "1", "amplitude": "-10", "unit": "deg"})
+    assert r.status_code == 422 and r.json()["error"]["value"] == "-10"
+    ok = client.get("/api/period", params={"length": "1", "amplitude": "45", "unit": "deg"}).json()
+    assert ok["amplitude"] == math.pi / 4
