@@ -95,7 +95,7 @@ def address_space(extra: int = GIB):
 
 def run_in_process(args: list[str]) -> tuple[int, str]:
     """``pendulab ARGS`` in process, with 1 GiB of address space to spare: exit status, stderr."""
-    with CliRunner().isolation() as (out, err, _), address_space():
+    with CliRunner().isolation() as (_out, err, _), address_space():
         code = main(args)
     return code, err.getvalue().decode("utf-8", "replace")
 

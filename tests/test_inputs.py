@@ -63,7 +63,7 @@ def test_unicode_digits_are_refused_everywhere(text):
     for parse in (lambda s: inputs.real("v", s), lambda s: inputs.angle("v", s),
                   lambda s: inputs.integer("v", s, 0, 10**6), lambda s: inputs.positive_list("v", s),
                   lambda s: inputs.students("v", s), lambda s: inputs.quantity("v", s, M, "m", True)):
-        with pytest.raises(InputError, match="digits 0-9|integers"):
+        with pytest.raises(InputError, match=r"digits 0-9|integers"):
             parse(text)
 
 
@@ -182,7 +182,7 @@ def test_every_parser_returns_or_raises_one_line(parser, text):
 
 
 @settings(max_examples=200, deadline=1000)
-@given(mantissa=st.integers(-10**30, 10**30), exponent=st.integers(-300, 300))
+@given(mantissa=st.integers(-10**30, 10**30), exponent=st.integers(-300, 270))  # |value| < 1e301
 def test_decimal_literals_are_exact(mantissa, exponent):
     x = inputs.real("v", f"{mantissa}e{exponent}")
     assert x.coef == Fraction(mantissa) * Fraction(10) ** exponent
@@ -212,8 +212,8 @@ def test_registry():
 def test_kernels_share_the_registry_codes():
     from pendulab import _kernels, sweep
 
-    assert (_kernels.TAYLOR2, _kernels.RK4, _kernels.VERLET, _kernels.TAYLOR) == tuple(methods.Kernel)
-    assert (_kernels.FOUND, _kernels.NO_RETURN, _kernels.LEFT_OSCILLATION, _kernels.TOO_EARLY) == tuple(methods.Status)
+    assert tuple(methods.Kernel) == (_kernels.TAYLOR2, _kernels.RK4, _kernels.VERLET, _kernels.TAYLOR)
+    assert tuple(methods.Status) == (_kernels.FOUND, _kernels.NO_RETURN, _kernels.LEFT_OSCILLATION, _kernels.TOO_EARLY)
     assert sweep.STATUS == ("found", "no_return", "left_oscillation", "too_early")
 
 

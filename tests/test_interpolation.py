@@ -6,6 +6,7 @@ import numpy as np
 import pytest
 from scipy.interpolate import BarycentricInterpolator
 
+from pendulab.errors import InputError
 from pendulab.interpolation import divided_differences, inverse_cubic, newton_eval
 
 
@@ -38,7 +39,7 @@ def test_inverse_cubic_estimates_its_own_error():
 
 
 def test_repeated_nodes_are_rejected():
-    with pytest.raises(ValueError):
+    with pytest.raises(InputError, match="distinct"):
         divided_differences([0.0, 0.0, 1.0], [1.0, 2.0, 3.0])
 
 

@@ -40,11 +40,11 @@ def test_rule_11_is_gauss_legendre_3():
 
 
 def test_rule_checks_itself():
-    with pytest.raises(ValueError, match="sum"):
+    with pytest.raises(InputError, match="sum"):
         Rule("bad weights", (-0.5, 0.5), (1.0, 0.9), 1)
-    with pytest.raises(ValueError, match="not exact"):
+    with pytest.raises(InputError, match="not exact"):
         Rule("claims too much", GAUSS3.nodes, GAUSS3.weights, 6)
-    with pytest.raises(ValueError, match="more than"):
+    with pytest.raises(InputError, match="more than"):
         Rule("claims too little", GAUSS3.nodes, GAUSS3.weights, 4)
 
 

@@ -57,7 +57,3 @@ class MissingExtraError(ImportError):
     ``drawing plots needs matplotlib, which is not installed: pip install 'pendulab[report]'``.
     """
 
-
-class DefinitionError(PendulabError, ValueError):
-    """A method defined inconsistently (a quadrature rule whose weights or degree are wrong,
-    interpolation nodes that coincide): a programming error in the caller's data."""

@@ -15,6 +15,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from .errors import InputError
 from .results import Result
 
 
@@ -26,7 +27,7 @@ def divided_differences(x: np.ndarray, y: np.ndarray) -> np.ndarray:
     x = np.asarray(x, dtype=float)
     coef = np.array(y, dtype=float)
     if len(np.unique(x)) != len(x):
-        raise ValueError("interpolation nodes must be distinct")
+        raise InputError("x", x.tolist(), "distinct interpolation nodes")
     for k in range(1, len(x)):
         coef[k:] = (coef[k:] - coef[k - 1 : -1]) / (x[k:] - x[: len(x) - k])
     return coef

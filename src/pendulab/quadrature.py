@@ -77,17 +77,21 @@ class Rule:
         x = np.array(self.nodes, dtype=float)
         w = np.array(self.weights, dtype=float)
         if x.shape != w.shape or x.ndim != 1 or not np.all(np.abs(x) <= 1):
-            raise ValueError(f"rule {self.name}: nodes and weights must match, nodes in [-1, 1]")
+            raise InputError("nodes", self.nodes, f"as many nodes as weights, all in [-1, 1] (rule {self.name})")
         if abs(w.sum() - 2) > 8 * np.finfo(float).eps:
-            raise ValueError(f"rule {self.name}: weights sum to {w.sum()!r}, not 2 (= length of [-1, 1])")
+            raise InputError("weights", self.weights,
+                             f"weights that sum to 2, the length of [-1, 1]; these sum to {w.sum()!r} (rule {self.name})")
         for k in range(self.degree + 2):
             exact = 2 / (k + 1) if k % 2 == 0 else 0.0  # int_{-1}^{1} x^k dx
             err = abs(float(w @ x**k) - exact)
             ok = err <= 16 * np.finfo(float).eps
             if k <= self.degree and not ok:
-                raise ValueError(f"rule {self.name}: not exact for x^{k} (error {err:.3e})")
+                raise InputError("degree", self.degree,
+                                 f"the rule's degree: it is not exact for x^{k} (error {err:.3e}, rule {self.name})")
             if k == self.degree + 1 and ok:
-                raise ValueError(f"rule {self.name}: exact for x^{k}: degree is more than {self.degree}")
+                raise InputError("degree", self.degree,
+                                 f"the rule's degree: it is exact for x^{k}, so its degree is more than {self.degree} "
+                                 f"(rule {self.name})")
 
     def apply(self, f: Callable[[np.ndarray], np.ndarray], a: float, b: float) -> float:
         """One application on ``[a, b]`` (5(b))."""
