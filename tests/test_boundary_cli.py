@@ -39,6 +39,7 @@ BASE = {
     "fit": ["--t-max", "2", "--step", "0.05"],
     "quadrature": ["--n", "1,10"],
     "report": [],
+    "key": ["--groups", "groups.txt", "--output", "key.json"],
     "serve": ["--host", "127.0.0.1"],
     "approximations": [],
     "sweep": ["-a", "10deg:20deg:3", "--step", "1e-2", "--method", "taylor2"],
@@ -59,7 +60,7 @@ def test_every_command_has_a_base():
 
 @pytest.fixture(scope="module")
 def sandbox(tmp_path_factory):
-    """A scratch working folder, a report and a server that do no work: the boundary is under test."""
+    """A scratch working folder; a report, a key and a server that do no work: the boundary is under test."""
     folder = tmp_path_factory.mktemp("cli")
     real = socket.getaddrinfo
 
@@ -69,10 +70,14 @@ def sandbox(tmp_path_factory):
 
     import uvicorn
 
+    import pendulab.key
     import pendulab.report
 
+    (folder / "groups.txt").write_text("262 407 634\n", encoding="utf-8")
     with pytest.MonkeyPatch.context() as mp, contextlib.chdir(folder):
         mp.setattr(pendulab.report, "build_report", lambda *a, **k: None)
+        mp.setattr(pendulab.key, "answer_key", lambda *a, **k: None)
+        mp.setattr(pendulab.key, "write_key", lambda *a, **k: None)
         mp.setattr(uvicorn, "run", lambda *a, **k: None)
         mp.setattr(socket, "getaddrinfo", numeric_only)
         for command in COMMANDS:  # imports and compiled kernels loaded before anything is timed

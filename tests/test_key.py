@@ -92,7 +92,8 @@ def test_parse_groups_commas_spaces_comments():
 
 
 @pytest.mark.parametrize("text, line", [
-    ("262,407\n12a, 5\n", 2), ("1\n\n-3 4\n", 3), ("0\n", 1), ("5,,\n7 8\nx\n", 3), ("1.5 2\n", 1),
+    ("262,407\n12a, 5\n", 2), ("1\n\n-3 4\n", 3), ("0\n", 1), ("5\n7 8\nx\n", 3), ("1.5 2\n", 1),
+    ("5,,6\n", 1), ("7 8\n262 ² 634\n", 2), ("１２\n", 1),
 ])
 def test_bad_line_is_named(text, line):
     with pytest.raises(InputError) as exc:

@@ -331,6 +331,16 @@ def angle_range(name: str, text: object, max_count: int) -> list[float]:
     raise InputError(name, shown(s), allowed)
 
 
+def path_text(name: str, text: object, allowed: str = "a file path") -> str:
+    """A file path as typed: not empty, no NUL character, at most 4096 characters."""
+    s = "" if text is None else os.fspath(text)
+    if not s.strip():
+        raise InputError(name, "(empty)", allowed)
+    if len(s) > 4096 or "\0" in s:
+        raise InputError(name, shown(s), allowed)
+    return s
+
+
 def output_path(name: str, text: object, extensions: Iterable[str]) -> Path:
     """A file to write: one of ``extensions`` (``".png"``), in an existing writable folder.
 
@@ -340,11 +350,7 @@ def output_path(name: str, text: object, extensions: Iterable[str]) -> Path:
 
     exts = tuple(e.lower() for e in extensions)
     allowed = f"a file name ending in {', '.join(exts[:-1]) + ' or ' if len(exts) > 1 else ''}{exts[-1]}"
-    s = "" if text is None else os.fspath(text)
-    if not s.strip():
-        raise InputError(name, "(empty)", allowed)
-    if len(s) > 4096 or "\0" in s:
-        raise InputError(name, shown(s), allowed)
+    s = path_text(name, text, allowed)
     try:
         p = check_writable(name, s)
     except OSError as exc:  # a name too long for the file system, and the like

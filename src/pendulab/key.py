@@ -11,17 +11,18 @@ import io
 import json
 import math
 import os
-import re
 from collections.abc import Sequence
 from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
 
+from . import inputs
 from .errors import InputError
 
 #: Output formats by file extension.
 FORMATS = ("csv", "json", "pdf")
-_SEPARATOR = re.compile(r"[,\s]+")
+#: The largest groups file read (a class of thousands of groups is a few hundred kB).
+MAX_FILE_BYTES = 10**7
 
 
 def parse_groups(text: str, source: str = "groups") -> list[tuple[int, ...]]:
@@ -38,12 +39,8 @@ def parse_groups(text: str, source: str = "groups") -> list[tuple[int, ...]]:
         line = raw.split("#", 1)[0].strip()
         if not line:
             continue
-        items = [s for s in _SEPARATOR.split(line) if s]
-        if not all(s.isdigit() for s in items):
-            raise InputError("groups", f"{source} line {number}: {raw.strip()!r}",
-                             "student numbers (non-negative integers) separated by commas or spaces")
-        students = tuple(int(s) for s in items)
         try:
+            students = inputs.students("groups", line)  # the CLI's grammar of student numbers
             group_length(students)
         except InputError as exc:
             raise InputError("groups", f"{source} line {number}: {raw.strip()!r}", exc.allowed) from None
@@ -57,6 +54,8 @@ def read_groups(path: str | os.PathLike) -> list[tuple[int, ...]]:
     """The groups of the file ``path`` (see :func:`parse_groups`)."""
     p = Path(path)
     try:
+        if p.is_file() and p.stat().st_size > MAX_FILE_BYTES:  # by its size, before reading it
+            raise InputError("groups", inputs.shown(str(path)), f"a file of at most {MAX_FILE_BYTES:.0e} bytes")
         text = p.read_text(encoding="utf-8")
     except (OSError, UnicodeDecodeError) as exc:
         reason = exc.strerror if isinstance(exc, OSError) and exc.strerror else type(exc).__name__

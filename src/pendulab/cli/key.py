@@ -3,12 +3,15 @@ from __future__ import annotations
 
 import click
 
+from .. import inputs
+from ._common import Parsed, output
+
 
 @click.command()
-@click.option("--groups", "groups_file", required=True, type=click.Path(dir_okay=False),
+@click.option("--groups", "groups_file", required=True, type=Parsed(lambda s: inputs.path_text("groups", s), "file"),
               help="A text file, one group per line: student numbers separated by commas or spaces "
                    "(blank lines and # comments allowed).")
-@click.option("--output", "-o", default=None, type=click.Path(dir_okay=False),
+@click.option("--output", "-o", default=None, type=output(".csv", ".json", ".pdf"),
               help="Write the key to this file: .csv, .json or .pdf (atomically).")
 @click.option("--json", "as_json", is_flag=True, help="Print the key as one JSON document on stdout.")
 def key(groups_file: str, output: str | None, as_json: bool) -> None:
