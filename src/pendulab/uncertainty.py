@@ -165,13 +165,22 @@ def gravity_estimate(length: float, length_error: float, period: float, period_e
         raise InputError("length_error", length_error, f"< length = {length:g} (a positive length in the box)")
     if not period_error < period:
         raise InputError("period_error", period_error, f"< period = {period:g} (a positive period in the box)")
-    g = gravity(length, period)
-    abs_err = abs_error_bound(length, length_error, period, period_error)
-    rel_err = rel_error_bound(length, length_error, period, period_error)
-    g_min = gravity(length - length_error, period + period_error)
-    g_max = gravity(length + length_error, period - period_error)
-    worst = max(g_max - g, g - g_min)
-    bound = max(abs_err, worst)
+    try:
+        g = gravity(length, period)
+        abs_err = abs_error_bound(length, length_error, period, period_error)
+        rel_err = rel_error_bound(length, length_error, period, period_error)
+        g_min = gravity(length - length_error, period + period_error)
+        g_max = gravity(length + length_error, period - period_error)
+        worst = max(g_max - g, g - g_min)
+        bound = max(abs_err, worst)
+        finite = all(math.isfinite(x) and x != 0 for x in (g, g_min, g_max)) and math.isfinite(bound)
+    except (OverflowError, ZeroDivisionError):  # T**3 beyond the doubles, or T**2 below them
+        finite = False
+    if not finite:
+        # Blame the input further, in decades, from a laboratory pendulum (1 m, 2 s).
+        name, value = ("period", period) if abs(math.log10(period / 2)) >= abs(math.log10(length)) else ("length", length)
+        raise InputError(name, value, "such that g = 4 pi^2 l/T^2 and its error bounds are finite, "
+                         "non-zero doubles (T^3 and l/T^2 within 1e-308..1e308)")
     n = significant_digits(g, bound)
     return GravityEstimate(
         length=length,
