@@ -35,7 +35,15 @@ class InputError(PendulabError, ValueError):
         self.name = name
         self.value = value
         self.allowed = allowed
-        super().__init__(f"{name} = {value!s} is not allowed: must be {allowed}")
+        super().__init__(f"{name} = {_shown(value)} is not allowed: must be {allowed}")
+
+
+def _shown(value: object) -> str:
+    """A float as its shortest repr without a trailing ``.0`` (``1`` typed shows as ``1``)."""
+    if isinstance(value, float):
+        text = repr(value)
+        return text[:-2] if text.endswith(".0") else text
+    return str(value)
 
 
 class NumericalError(PendulabError):

@@ -120,7 +120,7 @@ def _cli_message(exc: PendulabError, command: str | None) -> str:
         if p.name == name or flag in getattr(p, "opts", ()):
             name = option_name(p)
             break
-    return " ".join(f"{name} = {exc.value!s} is not allowed: must be {exc.allowed}".split())
+    return " ".join(str(exc).replace(exc.name, name, 1).split())
 
 
 if __name__ == "__main__":  # pragma: no cover

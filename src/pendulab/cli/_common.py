@@ -32,7 +32,7 @@ class Parsed(click.ParamType):
         try:
             return self.parse(value)
         except InputError as exc:
-            self.fail(f"{option_name(param)} = {exc.value!s} is not allowed: must be {exc.allowed}", param, ctx)
+            self.fail(" ".join(str(exc).replace(exc.name, option_name(param), 1).split()), param, ctx)
 
 
 def option_name(param: click.Parameter | None) -> str:
@@ -47,6 +47,16 @@ def option_name(param: click.Parameter | None) -> str:
 def integer(low: int, high: int) -> Parsed:
     """An integer in ``[low, high]`` (ASCII digits; ``1e3`` is 1000)."""
     return Parsed(lambda s: inputs.integer("value", s, low, high), f"{low}..{high}")
+
+
+def choice(*values: str) -> Parsed:
+    """One of ``values``, exactly as written."""
+    def parse(text: str) -> str:
+        if text not in values:
+            raise InputError("value", inputs.shown(text), "one of " + ", ".join(values))
+        return text
+
+    return Parsed(parse, "|".join(values))
 
 
 def output(*extensions: str) -> Parsed:

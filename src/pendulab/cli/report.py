@@ -5,7 +5,7 @@ import click
 
 from .. import inputs
 from ..cases import EXAMPLE_GROUP
-from ._common import Parsed, output
+from ._common import Parsed, choice, output
 
 #: The example group as the option writes it: ``262,407,634``.
 EXAMPLE = ",".join(map(str, EXAMPLE_GROUP))
@@ -24,7 +24,7 @@ STUDENTS = Parsed(lambda s: s, "numbers")  # checked with the extra NUMBERS, in 
 )
 @click.option(
     "--lang",
-    type=click.Choice(["en", "pt"]),
+    type=choice("en", "pt"),
     default="en",
     show_default=True,
     help="Language of the report: English or Portuguese (the coursework's).",
