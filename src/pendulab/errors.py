@@ -40,8 +40,8 @@ class InputError(PendulabError, ValueError):
 
 def _shown(value: object) -> str:
     """A float as its shortest repr without a trailing ``.0`` (``1`` typed shows as ``1``)."""
-    if isinstance(value, float):
-        text = repr(value)
+    if isinstance(value, float):  # numpy's float64 too, whose repr names its type
+        text = repr(float(value))
         return text[:-2] if text.endswith(".0") else text
     return str(value)
 
