@@ -1,4 +1,5 @@
 """Packaging: the version, the lean core and the one-line message for a missing extra."""
+import io
 import re
 import subprocess
 import sys
@@ -153,3 +154,24 @@ def test_chromium_named_by_the_environment(monkeypatch, tmp_path):
     monkeypatch.setenv("PENDULAB_CHROMIUM", str(tmp_path / "missing"))
     with pytest.raises(LookupError, match="PENDULAB_CHROMIUM = .*missing is not an executable file"):
         find_chromium()
+
+
+def test_one_progress_bar_library(monkeypatch):
+    """click's progress bar for the report as for the sweep; rich is not used anywhere."""
+    sources = [p.read_text() for p in (ROOT / "src" / "pendulab").rglob("*.py")]
+    assert not [s for s in sources if re.search(r"^\s*(from|import) rich\b", s, re.M)]
+    from pendulab.report.builder import _Bar
+
+    class Terminal(io.StringIO):
+        def isatty(self):
+            return True
+
+    monkeypatch.setattr(sys, "stderr", Terminal())
+    with _Bar() as bar:
+        task = bar.add_task("starting", total=2)
+        bar.update(task, description="problem 3")
+        bar.advance(task)
+        bar.update(task, description="typesetting")
+        bar.advance(task)
+    err = sys.stderr.getvalue()
+    assert "report" in err and "typesetting" in err and "100%" in err

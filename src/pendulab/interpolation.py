@@ -114,7 +114,7 @@ def inverse_cubic(z2: np.ndarray, t: np.ndarray, fifth: tuple[float, float]) -> 
     x5 = np.ldexp(x5, -e)
     x = x5[:4]
     coef = divided_differences(x, t)
-    value = newton_eval(coef, x, 0.0)
+    value = float(newton_eval(coef, x, 0.0))
     five = divided_differences(x5, t5)
     prod = float(np.prod(0.0 - x))
     error = float(five[-1]) * prod

@@ -14,6 +14,7 @@ import sys
 import tempfile
 from collections.abc import Sequence
 from pathlib import Path
+from typing import Any
 
 from . import sections
 from .document import LANGUAGES, Doc, _check_lang, load_catalogue
@@ -41,20 +42,40 @@ class _Quiet:
         pass
 
 
-def _progress(show: bool):
-    if not (show and sys.stderr.isatty()):
-        return _Quiet()
-    from rich.console import Console
-    from rich.progress import BarColumn, Progress, SpinnerColumn, TextColumn, TimeElapsedColumn
+class _Bar:
+    """The report's progress on stderr: click's bar, the same as ``pendulab sweep``'s."""
 
-    return Progress(
-        SpinnerColumn(),
-        TextColumn("[bold]report[/bold] {task.description}"),
-        BarColumn(),
-        TimeElapsedColumn(),
-        console=Console(stderr=True),
-        transient=True,
-    )
+    def __init__(self) -> None:
+        self._label = ""
+        self._bar: Any = None
+
+    def __enter__(self):
+        return self
+
+    def __exit__(self, *exc):
+        if self._bar is not None:
+            self._bar.__exit__(*exc)
+        return False
+
+    def add_task(self, description: str, total: int) -> int:
+        import click
+
+        self._label = description
+        self._bar = click.progressbar(length=total, label="report", file=sys.stderr,
+                                      item_show_func=lambda _: self._label)
+        self._bar.__enter__()
+        return 0
+
+    def update(self, task: int, description: str) -> None:
+        self._label = description
+        self._bar.render_progress()
+
+    def advance(self, task: int) -> None:
+        self._bar.update(1)
+
+
+def _progress(show: bool) -> _Quiet | _Bar:
+    return _Bar() if show and sys.stderr.isatty() else _Quiet()
 
 
 def new_doc(students: Sequence[int], lang: str, folder: Path) -> Doc:
