@@ -39,7 +39,7 @@ import re
 from collections.abc import Callable, Iterable
 from fractions import Fraction
 from pathlib import Path
-from typing import TypeVar
+from typing import TypeVar, cast
 
 from .errors import InputError
 from .exact import Exact
@@ -333,7 +333,7 @@ def angle_range(name: str, text: object, max_count: int) -> list[float]:
 
 def path_text(name: str, text: object, allowed: str = "a file path") -> str:
     """A file path as typed: not empty, no NUL character, at most 4096 characters."""
-    s = "" if text is None else os.fspath(text)
+    s = "" if text is None else os.fspath(cast("str | os.PathLike[str]", text))  # TypeError for others, as before
     if not s.strip():
         raise InputError(name, "(empty)", allowed)
     if len(s) > 4096 or "\0" in s:
