@@ -169,3 +169,14 @@ def test_flow_series_is_the_solution_of_the_ode():
         s = series_zero(x, 0.0, 0.0, 0.1)
         ref = mpmath.findroot(lambda t: sol(t)[1], 0.02)
         assert s == pytest.approx(float(ref), abs=1e-16)
+
+
+def test_sweep_and_estimate_agree_where_theta_prime_underflows():
+    from pendulab.sweep import sweep
+
+    # h (g/l) alpha = 9.8e-309 < 2.2e-308: theta' moves in subnormal steps.
+    with pytest.raises(NoReturnError, match="underflow"):
+        estimate_period(1.0, 1e-306, 1e-3)
+    r = sweep(np.array([1e-306, 5e-324, 1e-3]), [1e-3])
+    assert list(r["status"]) == ["no_return", "no_return", "found"]
+    assert np.isnan(r["cubic"][:2]).all()

@@ -161,6 +161,10 @@ def _run_chunk(code: int, order: int, alphas: np.ndarray, lengths: np.ndarray, g
     n_steps = np.array([step_count(0.0, default_t_max(float(T), h), h) for T in exact], dtype=np.int64)
     kernel = first_returns if parallel else first_returns_serial
     status, j, z1w, z2w = kernel(code, order, alphas, -g / lengths, h, n_steps)
+    # As estimate_period: where theta' changes by less than the smallest normal double per
+    # step, its sign change is lost to underflow; no return is found.
+    underflow = alphas * (g / lengths) * h < np.finfo(float).tiny
+    status = np.where(underflow, int(Status.NO_RETURN), status)
     found = status == Status.FOUND
     t = (j[:, None] - 2 + np.arange(5)) * h  # t_k = k h (6): nodes j-2 .. j+2
     with np.errstate(invalid="ignore", divide="ignore"):
