@@ -109,7 +109,7 @@ def inverse_cubic(z2: np.ndarray, t: np.ndarray, fifth: tuple[float, float]) -> 
     t5 = np.append(t, fifth[1])
     big = float(np.max(np.abs(x5)))
     if not (math.isfinite(big) and big > 0):
-        raise ValueError(f"interpolation nodes must be finite and not all zero, got {x5.tolist()}")
+        raise InputError("z2", x5.tolist(), "finite interpolation nodes, not all zero")
     e = math.frexp(big)[1]
     x5 = np.ldexp(x5, -e)
     x = x5[:4]
