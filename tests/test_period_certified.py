@@ -5,6 +5,7 @@ working precision well above the digits compared, started from the exact inputs
 (``k' = cos(alpha/2)`` from the exact distance to pi where the amplitude is a multiple of
 pi): independent of Arb and of the AGM.
 """
+import math
 import random
 from fractions import Fraction
 
@@ -147,3 +148,24 @@ def test_ball_always_contains_the_period(num, length, g):
         assert ball.contains(arb(text))  # ref is within 1e-50 of the period; the ball is 1e-28 wide
     finally:
         ctx.prec = old
+
+
+def test_seven_iterations_within_four_ulps_up_to_the_truncation_limit():
+    # README claim (benchmarks/accuracy_claims.py): T^ of (8) is at most 4 ulp from the
+    # correctly rounded period up to pi - 3.24e-14, and the limit is where the truncation
+    # reaches half an ulp, not where T^ stops being "the same double".
+    import numpy as np
+
+    from pendulab.period import agm_period, fixed_iterations_limit
+
+    limit = fixed_iterations_limit()
+    assert 3.2e-14 < 3.141592653589793 - limit < 3.3e-14
+    rng = np.random.default_rng(11)
+    alphas = np.concatenate([rng.uniform(0, 3.1, 150),
+                             3.141592653589793 - np.exp(rng.uniform(np.log(3.3e-14), np.log(1e-6), 150))])
+    t7 = agm_period(1.0, alphas, iterations=7)
+    with mpmath.workdps(40):
+        ref = [float(4 * mpmath.sqrt(1 / mpmath.mpf(9.80665))
+                     * mpmath.ellipk(1 - mpmath.cos(mpmath.mpf(a) / 2) ** 2)) for a in alphas]
+    ulps = [abs(x - r) / math.ulp(r) for x, r in zip(t7, ref)]
+    assert max(ulps) <= 4
