@@ -19,7 +19,7 @@ $(VENV)/.installed-%: pyproject.toml | $(BIN)/python
 test: $(VENV)/.installed-test browser
 	$(BIN)/python -m pytest -n 2
 
-# ruff and mypy, configured in pyproject.toml.
+# ruff and mypy, configured in pyproject.toml (the tests run them too: tests/test_lint.py).
 lint: $(VENV)/.installed-test
 	$(BIN)/ruff check src
 	$(BIN)/mypy

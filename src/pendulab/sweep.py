@@ -15,21 +15,21 @@ from __future__ import annotations
 
 import math
 import os
+from collections.abc import Callable, Sequence
 from dataclasses import dataclass
 from pathlib import Path
-from typing import Any, Callable, Sequence
+from typing import Any
 
 import numpy as np
-
 from numba import njit, prange
 
 from . import _validate as v
 from ._atomic import atomic_path, check_writable
-from .cases import G
 from ._kernels import first_return
+from .cases import G
 from .errors import InputError
-from .period import _check_amplitudes, agm_period
 from .methods import Status, resolve
+from .period import _check_amplitudes, agm_period
 
 #: Status of each pendulum, as :func:`pendulab._kernels.first_return` reports it.
 STATUS = tuple(s.name.lower() for s in Status)
@@ -138,7 +138,7 @@ class SweepResult:
         suffix = p.suffix.lower()
         if suffix not in (".csv", ".parquet"):
             raise InputError("output", str(path), "a file name ending in .csv or .parquet")
-        table = pa.table({k: c for k, c in self.columns.items()})
+        table = pa.table(dict(self.columns.items()))
         with atomic_path(p) as tmp:
             if suffix == ".csv":
                 import pyarrow.csv as pacsv
@@ -160,7 +160,7 @@ def _run_chunk(code: int, order: int, alphas: np.ndarray, lengths: np.ndarray, g
     exact = np.asarray(agm_period(lengths, alphas, g), dtype=float)
     n_steps = np.array([step_count(0.0, default_t_max(float(T), h), h) for T in exact], dtype=np.int64)
     kernel = first_returns if parallel else first_returns_serial
-    status, j, z1w, z2w = kernel(code, order, alphas, -g / lengths, h, n_steps)
+    status, j, _z1w, z2w = kernel(code, order, alphas, -g / lengths, h, n_steps)
     # As estimate_period: where theta' changes by less than the smallest normal double per
     # step, its sign change is lost to underflow; no return is found.
     underflow = alphas * (g / lengths) * h < np.finfo(float).tiny
@@ -294,7 +294,7 @@ def sweep(
 
     if scheduler is None:
         parts = []
-        for name, code, order, h, lo, hi in jobs:
+        for _name, code, order, h, lo, hi in jobs:
             parts.append(_run_chunk(code, order, alpha[lo:hi], length[lo:hi], g, h))
             if progress is not None:
                 progress(hi - lo)
@@ -302,7 +302,7 @@ def sweep(
         parts = _run_dask(scheduler, jobs, alpha, length, g, progress)
 
     cols: dict[str, list] = {k: [] for k in ("method", "order", "step", "length", "amplitude")}
-    for (name, code, order, h, lo, hi) in jobs:
+    for (name, _code, order, h, lo, hi) in jobs:
         cols["method"].append(np.full(hi - lo, name, dtype=object))
         cols["order"].append(np.full(hi - lo, order, dtype=np.int64))
         cols["step"].append(np.full(hi - lo, h))
