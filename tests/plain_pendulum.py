@@ -90,5 +90,11 @@ def estimate(length: float, h: float, t_end: float):
         value = coef[k] + (0.0 - x[k]) * value
     fifth = divided_differences(x + [z2[0]], y + [t[0]])[-1]
     error = fifth * math.prod(0.0 - xi for xi in x)
+    # How far rounding each of the five times to a double (half an ulp) moves that estimate:
+    # t[x_0..x_4] = sum_k t_k / prod_(i != k) (x_k - x_i).
+    nodes = x + [z2[0]]
+    rounding = sum(math.ulp(tk) / 2 / abs(math.prod(xk - xi for i, xi in enumerate(nodes) if i != k))
+                   for k, (xk, tk) in enumerate(zip(nodes, y + [t[0]]))) * abs(math.prod(x))
     return {"j": j, "bracket": (t[2], t[3]), "linear": linear, "cubic": value, "error_estimate": error,
+            "rounding_level": rounding,
             "nodes": x, "times": y, "coefficients": coef}

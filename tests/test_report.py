@@ -339,7 +339,11 @@ def test_every_group_problem3_matches_plain_python(group_docs):
         assert doc.values["p3b.tmax"] in doc.entry("p3b.tmax")
         ref = plain.estimate(length, 1e-3, 2 * exact)
         assert f"j = {ref['j']}" in doc.entry("p3d")
-        ratio = abs(ref["error_estimate"]) / abs(ref["cubic"] - exact)
+        resolved = abs(ref["error_estimate"]) > ref["rounding_level"]
+        assert doc.choices["p3d.est"] == ("p3d.est.resolved" if resolved else "p3d.est.rounding")
+        bound = max(abs(ref["error_estimate"]), ref["rounding_level"])
+        assert float(doc.values["p3d.bound"].replace(" × 10#super[−", "e-").rstrip("]")) == pytest.approx(bound, rel=0.01)
+        ratio = bound / abs(ref["cubic"] - exact)
         assert doc.choices["p3d.verdict"] == ("p3d.verdict.negligible" if ratio < 1e-3 else "p3d.verdict.not_negligible")
     assert outcomes == {"returns", "leaves"}
 

@@ -71,8 +71,14 @@ class Problem3(Result):
         Observed orders of the period error between consecutive steps.
     cubic : PeriodEstimate
         3(d): the estimate with ``h = 1e-3`` (its ``interpolation`` holds the table).
+    interpolation_resolved : bool
+        3(d): the error estimate stands above the rounding level of the times ``t_k``
+        (``cubic.interpolation.rounding_level``); else it is rounding noise, and the
+        interpolation error is bounded by that level instead.
+    interpolation_bound : float
+        ``max(|error estimate|, rounding level)``: how large the interpolation error can be.
     interpolation_ratio : float
-        3(d): the interpolation error estimate over the Taylor method's error in the period.
+        3(d): ``interpolation_bound`` over the Taylor method's error in the period.
     interpolation_negligible : bool
         3(d)'s answer: ``interpolation_ratio < NEGLIGIBLE_RATIO``.
     """
@@ -90,6 +96,8 @@ class Problem3(Result):
     linear_orders: list[float | None]
     cubic_orders: list[float | None]
     cubic: PeriodEstimate
+    interpolation_resolved: bool
+    interpolation_bound: float
     interpolation_ratio: float
     interpolation_negligible: bool
 
@@ -161,7 +169,9 @@ def problem3(
     estimates = [estimate_period(length, alpha, s) for s in steps]
     cubic = estimates[steps.index(cubic_step)]
     taylor_err = abs(cubic.cubic - exact)
-    ratio = abs(cubic.cubic_error_estimate) / taylor_err if taylor_err > 0 else math.inf
+    ip = cubic.interpolation
+    bound = max(abs(ip.error_estimate), ip.rounding_level)
+    ratio = bound / taylor_err if taylor_err > 0 else math.inf
     return Problem3(
         figure3=figure3,
         group=group,
@@ -176,6 +186,8 @@ def problem3(
         linear_orders=observed_orders(steps, [abs(e.linear - exact) for e in estimates]),
         cubic_orders=observed_orders(steps, [abs(e.cubic - exact) for e in estimates]),
         cubic=cubic,
+        interpolation_resolved=ip.error_estimate_resolved,
+        interpolation_bound=bound,
         interpolation_ratio=ratio,
         interpolation_negligible=ratio < NEGLIGIBLE_RATIO,
     )

@@ -239,7 +239,10 @@ def problem3(doc: Doc, students: Sequence[int]) -> None:
         "p3d.x1": num(ip.z2[1], 10),
         "p3d.x2": num(ip.z2[2], 10),
         "p3d.threshold": sci(problems.NEGLIGIBLE_RATIO, 1),
+        "p3d.rl": sci(ip.rounding_level, 2),
+        "p3d.bound": sci(r.interpolation_bound, 2),
     })
+    doc.choose("p3d.est", "resolved" if r.interpolation_resolved else "rounding")
     doc.choose("p3d.verdict", "negligible" if r.interpolation_negligible else "not_negligible")
 
 
@@ -328,13 +331,13 @@ def problem5(doc: Doc, students: Sequence[int]) -> None:
 
 
 #: Programs the appendix lists by name and place only: the 15-page limit leaves room for
-#: about 650 lines of code at 8 pt; these assemble result objects, check arguments or
+#: about 700 lines of code at 8 pt; these assemble result objects, check arguments or
 #: wrap a library call around the methods printed in full.
 INDEX_ONLY = frozenset({
     "uncertainty.gravity_estimate", "lsq.least_squares", "newton.check_interval", "problems.problem2",
     "problems.problem4", "problems.problem5", "quadrature.Rule", "quadrature.convergence_table",
     "motion.jacobi", "motion.quarter_period", "problems.problem1", "uncertainty.round_significant",
-    "lsq.definiteness", "lsq.round_half_up", "period.period_mp",
+    "lsq.definiteness", "lsq.round_half_up", "period.period_mp", "quadrature.quadrature_period",
 })
 
 SECTIONS = [
