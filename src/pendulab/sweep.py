@@ -204,6 +204,8 @@ def _check_steps(steps: Any) -> list[float]:
 
 #: The most steps of all pendulums together (minutes of work on a few cores).
 MAX_TOTAL_STEPS = 10**11
+#: The most rows (pendulum, step, method) of one sweep: about 400 MB of results.
+MAX_ROWS = 10**6
 
 
 def _check_work(alpha: np.ndarray, length: np.ndarray, g: float, steps: list[float], methods: int) -> None:
@@ -215,6 +217,11 @@ def _check_work(alpha: np.ndarray, length: np.ndarray, g: float, steps: list[flo
     from .crossing import default_t_max
     from .taylor import MAX_STEPS
 
+    rows = len(alpha) * len(steps) * methods
+    if rows > MAX_ROWS:  # each row holds about 400 bytes of result columns
+        raise InputError("amplitude", f"{len(alpha)} amplitudes",
+                         f"at most {MAX_ROWS // (len(steps) * methods)} amplitudes with {len(steps)} step(s) and "
+                         f"{methods} method(s): at most {MAX_ROWS:.0e} pendulums in one sweep")
     periods = np.asarray(agm_period(length, alpha, g), dtype=float)
     longest, total_time = float(periods.max()), float(periods.sum())
     total = 0.0
