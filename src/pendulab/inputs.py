@@ -41,6 +41,7 @@ from fractions import Fraction
 from pathlib import Path
 from typing import TypeVar, cast
 
+from .cases import EXAMPLE_GROUP
 from .errors import InputError
 from .exact import Exact
 
@@ -289,7 +290,7 @@ def students(name: str, texts: object) -> tuple[int, ...]:
     Each is a positive integer of 1 to :data:`MAX_STUDENT_DIGITS` ASCII digits.
     """
     allowed = (f"student numbers: positive integers of 1 to {MAX_STUDENT_DIGITS} digits 0-9, "
-               "separated by commas or spaces, such as 262,407,634")
+               f"separated by commas or spaces, such as {','.join(map(str, EXAMPLE_GROUP))}")
     if isinstance(texts, (list, tuple)):
         texts = " ".join(str(t).strip() for t in texts)
     parts = items(name, texts, allowed, 100)

@@ -153,7 +153,7 @@ def problem3(
     steps: Sequence[float] = cases.PROBLEM3_STEPS,
     cubic_step: float = cases.PROBLEM3_CUBIC_STEP,
 ) -> Problem3:
-    """Solve problem 3 for a group of students (default: the spec's 262, 407, 634)."""
+    """Solve problem 3 for a group of students (default: the coursework's example group, ``cases.EXAMPLE_GROUP``)."""
     fig = cases.FIGURE3
     figure3 = simulate(fig.l, fig.alpha, cases.FIGURE3_STEP, cases.FIGURE3_T_MAX)
     group = group_length(students)
