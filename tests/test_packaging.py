@@ -175,3 +175,12 @@ def test_one_progress_bar_library(monkeypatch):
         bar.advance(task)
     err = sys.stderr.getvalue()
     assert "report" in err and "typesetting" in err and "100%" in err
+
+
+def test_docs_extra_brings_every_module_the_reference_imports():
+    """The API reference walks the whole package, so `make docs` (pendulab[docs]) needs [all]."""
+    extras = PYPROJECT["project"]["optional-dependencies"]
+    assert "pendulab[all]" in extras["docs"]
+    listed = " ".join(extras["all"])
+    for extra in ("report", "web", "sweep", "dask", "pandas"):
+        assert extra in listed
