@@ -13,27 +13,40 @@ References
 from __future__ import annotations
 
 import math
+import numbers
+import sys
 import threading
 from contextlib import contextmanager
 from fractions import Fraction
 from typing import Any
 
-import numpy as np
-
 from . import _validate as v
 from .cases import G_EXACT, G
 from .exact import Exact
 
+# numpy and numba are imported only where arrays are handled: a scalar period (and
+# ``pendulab period``) needs neither.
+
 #: Upper bound on AGM iterations: from b0 = 1e-300 the AGM converges in 17.
 _MAX_ITERATIONS = 64
 # Stop when a - b <= 4 eps a: the next step would change v by less than eps^2.
-_RTOL = 4 * np.finfo(float).eps
+_RTOL = 4 * sys.float_info.epsilon
+
+
+def _is_scalar(x: Any) -> bool:
+    if isinstance(x, numbers.Real):
+        return True
+    import numpy as np
+
+    return bool(np.ndim(x) == 0)
 
 
 def small_angle_period(length: Any, g: Any = G) -> Any:
     """Small-angle period ``2 pi sqrt(l/g)`` (problem 1). Vectorised over ``length``."""
-    if np.ndim(length) == 0:
+    if _is_scalar(length):
         return v.period_scale(v.positive("length", length), v.positive("g", g))
+    import numpy as np
+
     lengths = np.asarray(length, dtype=float)
     if not np.all(np.isfinite(lengths) & (lengths > 0)):
         bad = lengths[~(np.isfinite(lengths) & (lengths > 0))][0]
@@ -66,7 +79,7 @@ def agm_mean(b0: Any, iterations: int | None = None) -> Any:
     float or ndarray
         ``(a_n + b_n)/2`` after ``n`` iterations of (7).
     """
-    if np.ndim(b0) == 0:
+    if _is_scalar(b0):
         a, b = 1.0, float(b0)
         if iterations is None:
             for _ in range(_MAX_ITERATIONS):
@@ -77,27 +90,55 @@ def agm_mean(b0: Any, iterations: int | None = None) -> Any:
             for _ in range(iterations):
                 a, b = 0.5 * (a + b), math.sqrt(a * b)
         return 0.5 * (a + b)
-    bs = np.array(b0, dtype=float)
-    as_ = np.ones_like(bs)
+    import numpy as np
+
+    b = np.array(b0, dtype=float)
+    a = np.ones_like(b)
     if iterations is None:
         for _ in range(_MAX_ITERATIONS):
-            if np.all(as_ - bs <= _RTOL * as_):
+            if np.all(a - b <= _RTOL * a):
                 break
-            as_, bs = 0.5 * (as_ + bs), np.sqrt(as_ * bs)
+            a, b = 0.5 * (a + b), np.sqrt(a * b)
     else:
         for _ in range(iterations):
-            as_, bs = 0.5 * (as_ + bs), np.sqrt(as_ * bs)
-    return 0.5 * (as_ + bs)
+            a, b = 0.5 * (a + b), np.sqrt(a * b)
+    return 0.5 * (a + b)
 
 
 def _check_amplitudes(amplitude: Any) -> Any:
-    if np.ndim(amplitude) == 0:
+    if _is_scalar(amplitude):
         return v.amplitude("amplitude", amplitude)
+    import numpy as np
+
     alpha = np.asarray(amplitude, dtype=float)
     ok = np.isfinite(alpha) & (alpha >= 0) & (alpha < np.pi)
     if not np.all(ok):
         v.amplitude("amplitude", alpha[~ok][0])
     return alpha
+
+
+def nearest_period(length: float, amplitude: float, g: float) -> float:
+    """The double nearest to the true period (8) of the doubles ``length, amplitude, g``.
+
+    ``2 pi sqrt(l)/sqrt(g) / M(1, cos(alpha/2))`` in mpmath at 128 and 192 bits, each
+    rounded once to a double (round to nearest); the precision doubles until the two
+    agree (Ziv's strategy). Independent of the compiled double-double kernel, which
+    calls it where its own rounding test fails.
+    """
+    import mpmath
+    from mpmath.libmp import to_float
+
+    prec = 128
+    while True:
+        got = []
+        for p in (prec, prec + 64):
+            with mpmath.workprec(p):
+                m = mpmath.mpf
+                t = 2 * mpmath.pi * mpmath.sqrt(m(length)) / (mpmath.sqrt(m(g)) * mpmath.agm(1, mpmath.cos(m(amplitude) / 2)))
+                got.append(to_float(t._mpf_, rnd="n"))
+        if got[0] == got[1]:
+            return got[0]
+        prec *= 2  # pragma: no cover - a period within 2^-128 of a rounding boundary
 
 
 def agm_period(length: Any, amplitude: Any, g: Any = G, iterations: int | None = None) -> Any:
@@ -112,9 +153,10 @@ def agm_period(length: Any, amplitude: Any, g: Any = G, iterations: int | None =
     g : float
         Gravitational acceleration, m/s^2.
     iterations : int, optional
-        ``None`` (default): iterate (7) to convergence, accurate to about 1e-16 relative
-        for every amplitude up to ``pi - 1e-12`` and beyond. ``7``: the coursework's
-        ``T^`` bit for bit, exact only while ``alpha`` is not too close to ``pi`` (see
+        ``None`` (default): the AGM to convergence, and the result is the double nearest
+        to the true period of the given doubles (correctly rounded), for every amplitude
+        in ``[0, pi)``. ``7``: the coursework's ``T^`` bit for bit (the loop (7) in
+        double precision), exact only while ``alpha`` is not too close to ``pi`` (see
         :func:`fixed_iterations_limit`).
 
     Returns
@@ -124,24 +166,49 @@ def agm_period(length: Any, amplitude: Any, g: Any = G, iterations: int | None =
 
     Notes
     -----
-    ``b0 = cos(alpha/2)`` is computed directly: near ``alpha = pi`` it is small but has
-    full relative accuracy, and the AGM is multiplicatively well conditioned, so no
+    ``b0 = cos(alpha/2)`` is computed as ``sin((pi - alpha)/2)`` near ``alpha = pi``: small
+    but with full relative accuracy; the AGM is multiplicatively well conditioned, so no
     digits are lost there (unlike ``scipy.special.ellipk(sin(alpha/2)**2)``, whose
-    argument ``m`` rounds to 1).
+    argument ``m`` rounds to 1). ``sqrt(l)/sqrt(g)`` keeps periods such as
+    ``agm_period(1e-300, 1, g=1e300)`` representable. Arrays run the compiled
+    double-double kernel :func:`pendulab._agm.agm_periods_dd` (one core); a scalar is
+    computed by :func:`nearest_period` (mpmath), which gives the same double.
     """
     if iterations is not None:
         iterations = v.integer("iterations", iterations, 0, 1000)
     alpha = _check_amplitudes(amplitude)
-    t0 = small_angle_period(length, g)
-    if np.ndim(alpha) == 0 and np.ndim(t0) == 0:
-        return t0 / agm_mean(math.cos(0.5 * alpha), iterations)
-    # Arrays: one compiled pass, cos and the AGM fused, on all cores.
-    from ._kernels import agm_means
+    scalar = _is_scalar(alpha) and _is_scalar(length)
+    if scalar and iterations is not None:
+        return small_angle_period(length, g) / agm_mean(math.cos(0.5 * alpha), iterations)
+    if scalar:
+        small_angle_period(length, g)  # refuses a length or g whose period overflows
+        return nearest_period(float(length), alpha, float(g))
+    import numpy as np
 
-    alpha = np.asarray(alpha, dtype=float)
-    flat = np.ascontiguousarray(alpha).ravel()
-    means = agm_means(flat, -1 if iterations is None else iterations, _RTOL).reshape(alpha.shape)
-    return t0 / means
+    t0 = small_angle_period(length, g)  # checks the lengths and g
+    if iterations is not None:
+        from ._kernels import agm_means
+
+        alpha = np.asarray(alpha, dtype=float)
+        flat = np.ascontiguousarray(alpha).ravel()
+        means = agm_means(flat, iterations, _RTOL).reshape(alpha.shape)
+        return t0 / means
+    from ._agm import agm_periods_dd
+
+    g = float(g)
+    alpha, lengths = np.asarray(alpha, dtype=float), np.asarray(length, dtype=float)
+    shape = np.broadcast_shapes(alpha.shape, lengths.shape)
+    flat_a = np.ascontiguousarray(np.broadcast_to(alpha, shape)).ravel()
+    if lengths.size == 1:
+        flat_l = lengths.reshape(1)
+    else:
+        flat_l = np.ascontiguousarray(np.broadcast_to(lengths, shape)).ravel()
+    out = np.empty(flat_a.size)
+    flags = np.empty(flat_a.size, np.int8)
+    agm_periods_dd(flat_a, flat_l, g, out, out[:0], flags)
+    for i in np.flatnonzero(flags):  # the rounding test failed: about 1 in 10^5
+        out[i] = nearest_period(float(flat_l[i if flat_l.size > 1 else 0]), float(flat_a[i]), g)
+    return out.reshape(shape)
 
 
 def agm_iterations(amplitude: float) -> int:

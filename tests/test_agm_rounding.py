@@ -1,0 +1,122 @@
+"""agm_period returns the correctly rounded period: the double nearest to the true period.
+
+References: mpmath's elliptic K at 60 digits (``T = 4 sqrt(l/g) K(sin^2(alpha/2))``, a
+formula independent of the AGM), rounded once to the nearest double.
+"""
+import math
+
+import mpmath
+import numpy as np
+import pytest
+from hypothesis import given, settings
+from hypothesis import strategies as st
+
+from conftest import reference_period
+from pendulab._agm import ERROR_BOUND, agm_periods_dd, half_angle_cos
+from pendulab.period import agm_period, nearest_period
+
+G = 9.80665
+
+
+def nearest(length, alpha, g=G):
+    """The true period of the exact doubles, rounded to the nearest double."""
+    with mpmath.workdps(60):
+        ref = reference_period(length, alpha, g, dps=60)
+        return mpmath.libmp.to_float(ref._mpf_, rnd="n")
+
+
+RNG = np.random.default_rng(12)
+RANDOM_ALPHA = RNG.uniform(0, math.pi, 2000)
+RANDOM_LENGTH = RNG.uniform(0.05, 20, 2000)
+# Within 1e-15 of pi (the last 8 doubles below pi included), and below 1e-150.
+below_pi = [math.pi]
+for _ in range(8):
+    below_pi.append(math.nextafter(below_pi[-1], 0))
+HARD = np.concatenate([math.pi - np.logspace(-1, -15, 57), below_pi[1:], [1e-300, 5e-324, 1e-160, 0.0],
+                       np.nextafter(math.pi / 2, [0, 4])])
+
+
+def test_2000_random_pendulums_are_correctly_rounded():
+    got = agm_period(RANDOM_LENGTH, RANDOM_ALPHA)
+    ref = [nearest(l, a) for l, a in zip(RANDOM_LENGTH, RANDOM_ALPHA)]
+    assert np.array_equal(got, ref)
+
+
+def test_hard_amplitudes_near_pi_and_zero_are_correctly_rounded():
+    got = agm_period(1.0, HARD)
+    ref = [nearest(1.0, a) for a in HARD]
+    assert np.array_equal(got, ref)
+    assert agm_period(1.0, 3.14159265358972) == nearest(1.0, 3.14159265358972)
+
+
+def test_scalar_path_gives_the_same_doubles():
+    for length, alpha in zip(RANDOM_LENGTH[:50], RANDOM_ALPHA[:50]):
+        assert agm_period(length, alpha) == agm_period(np.array([length]), np.array([alpha]))[0]
+
+
+def test_double_double_value_is_within_the_error_bound():
+    # The kernel's unrounded th + tl against the reference at 60 digits.
+    alpha = np.concatenate([RANDOM_ALPHA[:300], HARD])
+    out, lo, flags = np.empty(alpha.size), np.empty(alpha.size), np.empty(alpha.size, np.int8)
+    agm_periods_dd(alpha, np.array([2.5]), G, out, lo, flags)
+    with mpmath.workdps(60):
+        worst = max(abs((mpmath.mpf(h) + mpmath.mpf(l)) / reference_period(2.5, a, dps=60) - 1)
+                    for h, l, a in zip(out, lo, alpha))
+    assert worst < ERROR_BOUND / 2**10
+
+
+def test_half_angle_cos_is_accurate_to_double_double():
+    from numba import njit
+
+    f = njit(lambda a: half_angle_cos(a))
+    with mpmath.workdps(50):
+        for a in np.concatenate([RANDOM_ALPHA[:200], HARD[:-4]]):
+            h, l = f(a)
+            ref = mpmath.cos(mpmath.mpf(a) / 2)
+            assert abs((mpmath.mpf(h) + mpmath.mpf(l)) / ref - 1) < 2.0**-85
+
+
+def test_failed_rounding_tests_are_recomputed():
+    # About one amplitude in 10^5 fails the cheap test; find some and check they come out right.
+    alpha = np.random.default_rng(0).uniform(0, math.pi, 1_000_000)
+    out, flags = np.empty(alpha.size), np.empty(alpha.size, np.int8)
+    agm_periods_dd(alpha, np.array([1.0]), G, out, out[:0], flags)
+    hard = alpha[flags == 1]
+    assert 0 < len(hard) < 20
+    assert np.array_equal(agm_period(1.0, hard), [nearest(1.0, a) for a in hard])
+
+
+def test_extreme_lengths_and_g_give_representable_periods():
+    # l/g under- or overflows, the period does not: sqrt(l)/sqrt(g).
+    assert agm_period(1e-300, 1.0, g=1e300) == nearest(1e-300, 1.0, 1e300)
+    assert agm_period(1e150, 1.0, g=1e-300) == nearest(1e150, 1.0, 1e-300)
+    assert 0 < agm_period(1e-300, 1.0, g=1e300) < 1e-298
+    both = agm_period(np.array([1e-300, 1e150]), 1.0, g=1e300)
+    assert both[0] == nearest(1e-300, 1.0, 1e300)
+    assert both[1] == nearest(1e150, 1.0, 1e300)
+    assert agm_period(np.array([1e150]), 1.0, g=1e-300)[0] == nearest(1e150, 1.0, 1e-300)
+
+
+def test_nearest_period_agrees_with_the_elliptic_k_reference():
+    for a in (0.0, 1e-8, 1.0, 3.0, math.pi - 1e-12):
+        assert nearest_period(3.5, a, G) == nearest(3.5, a)
+
+
+@settings(max_examples=60, deadline=None)
+@given(st.floats(0, math.pi, exclude_max=True), st.floats(1e-3, 1e3))
+def test_any_pendulum_is_correctly_rounded(alpha, length):
+    assert agm_period(np.array([length]), np.array([alpha]))[0] == nearest(length, alpha)
+
+
+def test_errors_of_the_double_loop_are_gone():
+    # The plain double-precision AGM is off by an ulp or more somewhere in these 2000.
+    from pendulab.period import agm_mean, small_angle_period
+
+    plain = [small_angle_period(l) / agm_mean(math.cos(a / 2)) for l, a in zip(RANDOM_LENGTH, RANDOM_ALPHA)]
+    assert not np.array_equal(plain, agm_period(RANDOM_LENGTH, RANDOM_ALPHA))
+
+
+@pytest.mark.parametrize("n", [1, 31, 32, 33, 95])
+def test_block_edges(n):
+    alpha = RANDOM_ALPHA[:n]
+    assert np.array_equal(agm_period(1.5, alpha), [nearest(1.5, a) for a in alpha])
