@@ -138,3 +138,18 @@ def test_cli_sweep_bad_input(args, needle, capsys):
     assert main(["sweep", *args]) == 2
     err = capsys.readouterr().err
     assert needle in err and len(err.strip().splitlines()) == 1 and "Traceback" not in err
+
+
+@pytest.mark.parametrize("threads", [1, 2, 3])
+def test_threads_give_the_serial_kernel_bit_for_bit(threads):
+    from pendulab.sweep import BLOCK, first_returns, first_returns_serial
+
+    m = 3 * BLOCK + 5  # blocks of unequal size
+    alphas = np.linspace(0.1, 3.1, m)
+    cs = -9.80665 / np.linspace(0.5, 3, m)
+    n = np.full(m, 4000, dtype=np.int64)
+    one = first_returns_serial(0, 2, alphas, cs, 1e-2, n)
+    many = first_returns(0, 2, alphas, cs, 1e-2, n, threads=threads)
+    assert len(one[0]) == m
+    for a, b in zip(one, many):
+        assert np.array_equal(a, b)
