@@ -180,3 +180,13 @@ def test_estimate_flags_rounding_level_and_offers_dense_output(cli):
     data = cli("estimate", "-a", "4pi/5", "--step", "1e-4", "--json").json["rows"][0]
     assert abs(data["cubic_error_estimate"]) <= data["cubic_error_estimate_rounding_level"]
     assert data["dense_error"] == abs(data["dense"] - cli("period", "-l", "2.0800838231", "-a", "4pi/5", "--json").json["period"])
+
+
+def test_period_needs_neither_numpy_nor_numba():
+    # The scalar path prints mpmath's digits: no numpy, numba or scipy import (start-up time).
+    code = ("import sys; from pendulab.cli import main; main(['period', '-l', '3.5', '-a', '4pi/5', '--json']); "
+            "main(['period', '-l', '3.5', '-a', '4pi/5']); "
+            "assert not {'numpy', 'numba', 'scipy'} & set(sys.modules), sorted(sys.modules)")
+    res = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, env=os.environ)
+    assert res.returncode == 0, res.stderr
+    assert "6.21265033491832 s" in res.stdout
