@@ -1,79 +1,60 @@
-"""Pendulum-steps per second of the sweep kernel: all cores, one core, and a plain Python loop.
+"""Pendulum-steps per second of the sweep kernel against a plain C loop, side by side.
 
-1000 pendulums, amplitudes 1..179 degrees, l = 1, one step h, each run to its first return
-(pendulab.sweep.first_returns). Steps counted are those the kernel actually took.
-Target (issue 6): 5e7 pendulum-steps/s on 2 cores with taylor2.
+1000 pendulums, amplitudes 1..179 degrees, l = 1, h = 1e-4 (default), taylor2, each run to
+its first return. Peer: the same search in C (``cc -O2``, compiled now) running the
+pendulums one after the other on one core. Ours: ``pendulab.sweep.first_returns`` (the
+serial nogil kernel on numba's threads, over blocks of pendulums) and the serial kernel on
+one thread. Steps counted are those the kernels actually took (``j + 2`` per pendulum);
+C and numba find the same ``j`` for every pendulum.
 
-Run: .venv/bin/python benchmarks/bench_sweep.py [h]     (default h = 1e-4)
+Run: ``.venv/bin/python benchmarks/bench_sweep.py [h]``. ``benchmarks/run.py`` prints
+these rows in its table.
 """
 from __future__ import annotations
 
-import math
-import os
+import ctypes
 import sys
-import time
 
-import numba
 import numpy as np
+from numba import get_num_threads
 
+from _peers import build_c, ptr, side_by_side
 from pendulab.crossing import default_t_max
 from pendulab.period import agm_period
 from pendulab.sweep import first_returns, first_returns_serial
-from pendulab.taylor import method_code, step_count
+from pendulab.taylor import step_count
 
 G = 9.80665
 
 
-def python_loop(alpha: float, c: float, h: float, n: int) -> int:
-    """The same first-return search as the kernel, in plain Python (the coursework's (3))."""
-    z1, z2 = alpha, 0.0
-    for i in range(n):
-        s = math.sin(z1)
-        z1n = z1 + h * z2 + 0.5 * h * h * c * s
-        z2n = z2 + h * c * s + 0.5 * h * h * c * z2 * math.cos(z1)
-        if z2 > 0.0 and z2n <= 0.0 and z1n > 0.0:
-            return i + 2
-        z1, z2 = z1n, z2n
-    return n
-
-
-def rate(kernel, code, order, alphas, cs, h, n) -> tuple[float, int]:
-    kernel(code, order, alphas[:2], cs[:2], h, n[:2])  # compile / load the cache
-    best = math.inf
-    for _ in range(3):
-        t = time.perf_counter()
-        status, j, _, _ = kernel(code, order, alphas, cs, h, n)
-        best = min(best, time.perf_counter() - t)
+def sweep_rows(dll, h: float = 1e-4, repeat: int = 3) -> list[dict]:
+    alphas = np.radians(np.linspace(1, 179, 1000))
+    cs = np.full_like(alphas, -G)
+    n = np.array([step_count(0.0, default_t_max(T, h), h) for T in agm_period(1.0, alphas)], dtype=np.int64)
+    j_c = np.empty(len(alphas), dtype=np.int64)
+    status, j, _, _ = first_returns_serial(0, 2, alphas, cs, h, n)
+    dll.sweep(ptr(alphas), ptr(cs), h, ptr(n, ctypes.c_long), len(alphas), ptr(j_c, ctypes.c_long))
+    assert np.all(status == 0) and np.array_equal(j, j_c), "C and numba disagree"
     steps = int(np.sum(j + 2))
-    return steps / best, steps
+    t = side_by_side({
+        "threads": lambda: first_returns(0, 2, alphas, cs, h, n),
+        "serial": lambda: first_returns_serial(0, 2, alphas, cs, h, n),
+        "C": lambda: dll.sweep(ptr(alphas), ptr(cs), h, ptr(n, ctypes.c_long), len(alphas), ptr(j_c, ctypes.c_long)),
+    }, repeat)
+    c_rate = steps / t["C"] / 1e6
+    return [
+        {"what": f"sweep, 1000 pendulums, h = {h:g}, {get_num_threads()} threads (M pendulum-steps/s)",
+         "ours": steps / t["threads"] / 1e6, "peer_name": "C loop, one core", "peer": c_rate, "target": ">= 2.0"},
+        {"what": "  same, serial kernel on one thread", "ours": steps / t["serial"] / 1e6,
+         "peer_name": "C loop, one core", "peer": c_rate, "target": ""},
+    ]
 
 
 def main() -> None:
+    from run import print_table
+
     h = float(sys.argv[1]) if len(sys.argv) > 1 else 1e-4
-    alphas = np.radians(np.linspace(1, 179, 1000))
-    cs = np.full_like(alphas, -G)
-    exact = agm_period(1.0, alphas)
-    n = np.array([step_count(0.0, default_t_max(T, h), h) for T in exact], dtype=np.int64)
-    print(f"1000 pendulums, 1..179 deg, h = {h:g}, {os.cpu_count()} CPUs; million pendulum-steps/s")
-    # "parallel, 1 thread": the same parallel kernel with numba.set_num_threads(1), so the
-    # ratio to it is the threads' speed-up; "serial kernel" is the one Dask workers run.
-    print(f"{'method':>10} {'all cores':>10} {'parallel, 1 thread':>19} {'speed-up':>9} {'serial kernel':>14}")
-    for method in ("taylor2", "verlet", "rk4", "taylor:4"):
-        code, order = method_code(method)
-        par, steps = rate(first_returns, code, order, alphas, cs, h, n)
-        numba.set_num_threads(1)
-        one, _ = rate(first_returns, code, order, alphas, cs, h, n)
-        numba.set_num_threads(numba.config.NUMBA_NUM_THREADS)
-        ser, _ = rate(first_returns_serial, code, order, alphas, cs, h, n)
-        print(f"{method:>10} {par / 1e6:>10.1f} {one / 1e6:>19.1f} {par / one:>9.2f} {ser / 1e6:>14.1f}")
-    # Plain Python on 10 pendulums (the peer a user would write first).
-    sub = slice(0, 1000, 100)
-    t = time.perf_counter()
-    steps = sum(python_loop(a, -G, h, int(k)) for a, k in zip(alphas[sub], n[sub]))
-    py = steps / (time.perf_counter() - t)
-    code, order = method_code("taylor2")
-    par, _ = rate(first_returns, code, order, alphas, cs, h, n)
-    print(f"plain Python loop, taylor2: {py / 1e6:.2f} million steps/s; numba all cores / Python = {par / py:.0f}")
+    print_table(sweep_rows(build_c(), h))
 
 
 if __name__ == "__main__":

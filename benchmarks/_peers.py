@@ -1,0 +1,79 @@
+"""What the benchmarks share: the plain C loops (compiled here with ``cc -O2``) and the timer.
+
+The C loops are equations (3) exactly as the numba kernels run them: ``taylor2`` stores
+every point (as ``pendulab._kernels.trajectory``), ``taylor2_return`` streams to the first
+sign change of ``z2`` from + to - (as ``first_return``), and ``sweep`` runs that search for
+many pendulums one after the other on one core (as a plain C program would).
+"""
+from __future__ import annotations
+
+import ctypes
+import subprocess
+import tempfile
+import time
+from pathlib import Path
+from typing import Callable
+
+import numpy as np
+
+C_SOURCE = r"""
+#include <math.h>
+void taylor2(double alpha, double c, double h, long n, double *z1, double *z2) {
+    z1[0] = alpha; z2[0] = 0.0;
+    for (long i = 0; i < n; i++) {
+        double s = sin(z1[i]);
+        z1[i + 1] = z1[i] + h * z2[i] + 0.5 * h * h * c * s;
+        z2[i + 1] = z2[i] + h * c * s + 0.5 * h * h * c * z2[i] * cos(z1[i]);
+    }
+}
+long taylor2_return(double alpha, double c, double h, long n) {
+    double z1 = alpha, z2 = 0.0;
+    for (long i = 0; i < n; i++) {
+        double s = sin(z1);
+        double z1n = z1 + h * z2 + 0.5 * h * h * c * s;
+        double z2n = z2 + h * c * s + 0.5 * h * h * c * z2 * cos(z1);
+        if (!(fabs(z1n) < M_PI)) return -i;
+        if (z2 > 0.0 && z2n <= 0.0 && z1n > 0.0) return i;
+        z1 = z1n; z2 = z2n;
+    }
+    return n;
+}
+void sweep(const double *alpha, const double *c, double h, const long *n, long m, long *j) {
+    for (long p = 0; p < m; p++) j[p] = taylor2_return(alpha[p], c[p], h, n[p]);
+}
+"""
+
+
+def build_c() -> ctypes.CDLL:
+    """Compile :data:`C_SOURCE` with the system's ``cc -O2`` and load it."""
+    folder = Path(tempfile.mkdtemp(prefix="pendulab-bench-"))
+    src, lib = folder / "taylor2.c", folder / "taylor2.so"
+    src.write_text(C_SOURCE)
+    subprocess.run(["cc", "-O2", "-shared", "-fPIC", str(src), "-o", str(lib), "-lm"], check=True)
+    dll = ctypes.CDLL(str(lib))
+    dbl, pd, pl, lng = ctypes.c_double, ctypes.POINTER(ctypes.c_double), ctypes.POINTER(ctypes.c_long), ctypes.c_long
+    dll.taylor2.argtypes = [dbl, dbl, dbl, lng, pd, pd]
+    dll.taylor2_return.argtypes = [dbl, dbl, dbl, lng]
+    dll.taylor2_return.restype = lng
+    dll.sweep.argtypes = [pd, pd, dbl, pl, lng, pl]
+    return dll
+
+
+def ptr(a: np.ndarray, kind=ctypes.c_double):
+    return a.ctypes.data_as(ctypes.POINTER(kind))
+
+
+def side_by_side(fns: dict[str, Callable[[], object]], repeat: int = 5) -> dict[str, float]:
+    """Best wall time of each function over ``repeat`` rounds, the functions taking turns.
+
+    Taking turns exposes each to the same load; the best time is the least disturbed.
+    """
+    for f in fns.values():
+        f()  # warm: compiled or loaded from the cache, pages touched
+    best = {k: float("inf") for k in fns}
+    for _ in range(repeat):
+        for k, f in fns.items():
+            t = time.perf_counter()
+            f()
+            best[k] = min(best[k], time.perf_counter() - t)
+    return best
