@@ -18,8 +18,8 @@ import sys
 
 import mpmath
 import numpy as np
-
 from _peers import build_c, ptr, side_by_side
+
 from pendulab._kernels import TAYLOR2, fill_trajectory, first_return
 from pendulab.period import agm_period
 

@@ -16,9 +16,9 @@ import ctypes
 import sys
 
 import numpy as np
+from _peers import build_c, ptr, side_by_side
 from numba import get_num_threads
 
-from _peers import build_c, ptr, side_by_side
 from pendulab.crossing import default_t_max
 from pendulab.period import agm_period
 from pendulab.sweep import first_returns, first_returns_serial

@@ -110,7 +110,7 @@ def test_dask_cluster_gives_the_same_result():
 
 
 def test_unreachable_scheduler_is_one_clear_error(monkeypatch):
-    monkeypatch.setattr("pendulab.sweep.CONNECT_TIMEOUT", 1)
+    monkeypatch.setattr("pendulab.sweep.cluster.CONNECT_TIMEOUT", 1)
     with pytest.raises(InputError, match="scheduler"):
         sweep([0.5], [1e-2], scheduler="tcp://127.0.0.1:9")  # port 9 (discard): nothing listens
 

@@ -18,9 +18,10 @@ from __future__ import annotations
 
 import math
 from fractions import Fraction
+from typing import Any
 
 import numpy as np
-from llvmlite import ir
+from llvmlite import ir  # type: ignore[import-untyped]
 from numba import njit, types
 from numba.extending import intrinsic
 
@@ -32,7 +33,12 @@ BLOCK = 32
 #: (``benchmarks/agm_ulps.py``, 10^5 amplitudes) is printed by that script.
 ERROR_BOUND = 2.0**-72
 
-_JIT = dict(cache=True, nogil=True, error_model="numpy", fastmath={"nnan", "ninf", "nsz", "contract"})
+# error_model="numpy": a division by zero gives inf, not an exception (a branch that would
+# stop the vectoriser). fastmath: no NaNs or infinities (inputs are checked), signed zeros
+# ignored, a * b + c may fuse; never reassociation, which would undo TwoSum.
+_FLAGS = {"nnan", "ninf", "nsz", "contract"}
+_jit = njit(cache=True, nogil=True, error_model="numpy", fastmath=_FLAGS)
+_inline = njit(cache=True, nogil=True, error_model="numpy", fastmath=_FLAGS, inline="always")
 
 
 def _dd(q: Fraction) -> tuple[float, float]:
@@ -69,7 +75,7 @@ S6, S7, S8, S9, S10, S11 = (c[0] for c in _SIN[6:])
 
 
 @intrinsic
-def fma(typingctx, a, b, c):
+def _fma(typingctx, a, b, c):
     """``a * b + c`` rounded once (the hardware's fused multiply-add, ``llvm.fma``)."""
     sig = types.float64(types.float64, types.float64, types.float64)
 
@@ -81,7 +87,11 @@ def fma(typingctx, a, b, c):
     return sig, codegen
 
 
-@njit(inline="always", **_JIT)
+#: ``fma(a, b, c)`` in compiled code (called without the typing context).
+fma: Any = _fma
+
+
+@_inline
 def two_sum(a, b):
     """``s + e = a + b`` exactly, ``s = fl(a + b)`` (Knuth's TwoSum)."""
     s = a + b
@@ -89,14 +99,14 @@ def two_sum(a, b):
     return s, (a - (s - bb)) + (b - bb)
 
 
-@njit(inline="always", **_JIT)
+@_inline
 def fast_two_sum(a, b):
     """``s + e = a + b`` exactly when ``|a| >= |b|`` (Dekker's FastTwoSum)."""
     s = a + b
     return s, b - (s - a)
 
 
-@njit(inline="always", **_JIT)
+@_inline
 def dd_mul(ah, al, bh, bl):
     """Double-double product (TwoProd by FMA, then the cross terms)."""
     p = ah * bh
@@ -104,21 +114,21 @@ def dd_mul(ah, al, bh, bl):
     return fast_two_sum(p, e)
 
 
-@njit(inline="always", **_JIT)
+@_inline
 def dd_add(ah, al, bh, bl):
     """Double-double sum."""
     s, e = two_sum(ah, bh)
     return fast_two_sum(s, e + (al + bl))
 
 
-@njit(inline="always", **_JIT)
-def dd_sqrt(h, l):
-    """``sqrt(h + l)``: one Newton correction of the double square root (residual by FMA)."""
-    r = math.sqrt(h)
-    return fast_two_sum(r, (fma(-r, r, h) + l) / (2.0 * r))
+@_inline
+def dd_sqrt(xh, xl):
+    """``sqrt(xh + xl)``: one Newton correction of the double square root (residual by FMA)."""
+    r = math.sqrt(xh)
+    return fast_two_sum(r, (fma(-r, r, xh) + xl) / (2.0 * r))
 
 
-@njit(inline="always", **_JIT)
+@_inline
 def dd_div(ah, al, bh, bl):
     """Double-double quotient ``a / b``: the double quotient and one correction."""
     q = ah / bh
@@ -126,7 +136,7 @@ def dd_div(ah, al, bh, bl):
     return fast_two_sum(q, r / bh)
 
 
-@njit(inline="always", **_JIT)
+@_inline
 def half_angle_cos(alpha):
     """``b0 = cos(alpha/2)`` for ``0 <= alpha < pi`` as a double-double.
 
@@ -163,19 +173,19 @@ def half_angle_cos(alpha):
     return dd_mul(rh, rl, 1.0 if c else zh, 0.0 if c else zl)
 
 
-@njit(inline="always", **_JIT)
+@_inline
 def t0_dd(length, gh, gl):
     """``2 pi sqrt(l) / sqrt(g)`` as a double-double, from ``sqrt(g) = gh + gl``.
 
     Two square roots, not ``sqrt(l/g)``: ``l/g`` can under- or overflow while the period
     is representable.
     """
-    lh, ll = dd_sqrt(length, 0.0)
-    qh, ql = dd_div(lh, ll, gh, gl)
+    rh, rl = dd_sqrt(length, 0.0)
+    qh, ql = dd_div(rh, rl, gh, gl)
     return dd_mul(TWO_PI_HI, TWO_PI_LO, qh, ql)
 
 
-@njit(**_JIT)
+@_jit
 def block_iterations(b0):
     """Steps of (7) from ``(1, b0)`` until ``a - b <= 2^-14 a``.
 
@@ -191,7 +201,7 @@ def block_iterations(b0):
     return 64
 
 
-@njit(**_JIT)
+@_jit
 def agm_periods_dd(alpha, lengths, g, out, lo, flags):
     """``out[i]`` = the period of ``(lengths[i or 0], alpha[i])``, rounded; ``flags[i] = 1``
     where the rounding test fails (the caller computes those again).
@@ -222,11 +232,11 @@ def agm_periods_dd(alpha, lengths, g, out, lo, flags):
             for k in range(m):
                 w[TH + k], w[TL + k] = t0_dd(lengths[start + k], gh, gl)
         for k in range(B):
-            h, l = half_angle_cos(w[AL + k])
+            bh, bl = half_angle_cos(w[AL + k])
             w[A + k] = 1.0
             w[EA + k] = 0.0
-            w[BB + k] = h
-            w[EB + k] = l
+            w[BB + k] = bh
+            w[EB + k] = bl
         bmin = 1.0
         for k in range(B):
             bmin = min(bmin, w[BB + k])

@@ -92,17 +92,17 @@ def agm_mean(b0: Any, iterations: int | None = None) -> Any:
         return 0.5 * (a + b)
     import numpy as np
 
-    b = np.array(b0, dtype=float)
-    a = np.ones_like(b)
+    bv = np.array(b0, dtype=float)
+    av = np.ones_like(bv)
     if iterations is None:
         for _ in range(_MAX_ITERATIONS):
-            if np.all(a - b <= _RTOL * a):
+            if np.all(av - bv <= _RTOL * av):
                 break
-            a, b = 0.5 * (a + b), np.sqrt(a * b)
+            av, bv = 0.5 * (av + bv), np.sqrt(av * bv)
     else:
         for _ in range(iterations):
-            a, b = 0.5 * (a + b), np.sqrt(a * b)
-    return 0.5 * (a + b)
+            av, bv = 0.5 * (av + bv), np.sqrt(av * bv)
+    return 0.5 * (av + bv)
 
 
 def _check_amplitudes(amplitude: Any) -> Any:
@@ -199,10 +199,8 @@ def agm_period(length: Any, amplitude: Any, g: Any = G, iterations: int | None =
     alpha, lengths = np.asarray(alpha, dtype=float), np.asarray(length, dtype=float)
     shape = np.broadcast_shapes(alpha.shape, lengths.shape)
     flat_a = np.ascontiguousarray(np.broadcast_to(alpha, shape)).ravel()
-    if lengths.size == 1:
-        flat_l = lengths.reshape(1)
-    else:
-        flat_l = np.ascontiguousarray(np.broadcast_to(lengths, shape)).ravel()
+    # One length for all: the kernel computes 2 pi sqrt(l/g) once.
+    flat_l = lengths.reshape(1) if lengths.size == 1 else np.ascontiguousarray(np.broadcast_to(lengths, shape)).ravel()
     out = np.empty(flat_a.size)
     flags = np.empty(flat_a.size, np.int8)
     agm_periods_dd(flat_a, flat_l, g, out, out[:0], flags)

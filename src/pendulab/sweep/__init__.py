@@ -1,0 +1,177 @@
+"""Many pendulums at once: the period error of each method over a range of amplitudes.
+
+Every pendulum of the sweep runs the same streamed period search as
+:func:`pendulab.crossing.estimate_period` (:func:`pendulab._kernels.first_return`: the
+first sign change of ``theta'`` from + to - near ``P = (alpha, 0)``), here for arrays
+of amplitudes and lengths on all cores (:mod:`.kernel`); the window of five points around
+the sign change gives the linear and inverse cubic estimates of problem 3(d)
+(:mod:`.chunk`); the rows form a :class:`SweepResult` (:mod:`.result`), written to CSV or
+Parquet.
+
+A sweep can also run on a Dask cluster (``scheduler="tcp://host:8786"``, :mod:`.cluster`):
+the pendulums are cut into chunks, each chunk runs the serial kernel on a worker, and the
+result is the same, bit for bit, as on one machine.
+"""
+from __future__ import annotations
+
+from collections.abc import Callable
+from typing import Any
+
+import numpy as np
+
+from .. import _validate as v
+from ..cases import G
+from ..errors import InputError
+from ..methods import resolve
+from ..period import _check_amplitudes, agm_period
+from .chunk import inverse_cubic_rows, run_chunk
+from .kernel import BLOCK, first_returns, first_returns_serial
+from .result import STATUS, SweepResult
+
+__all__ = ["BLOCK", "CHUNK", "STATUS", "SweepResult", "first_returns", "first_returns_serial",
+           "inverse_cubic_rows", "sweep"]
+
+#: Pendulums per chunk (one progress tick, one Dask task): large enough to keep
+#: both cores busy, small enough for a smooth progress bar.
+CHUNK = 2048
+
+
+def _check_methods(methods: Any) -> list[tuple[str, int, int]]:
+    if isinstance(methods, str):
+        methods = [methods]
+    out = [(m.name, int(m.code), m.order) for m in map(resolve, methods)]
+    if not out:
+        raise InputError("method", "[]", "at least one method")
+    return out
+
+
+def _check_steps(steps: Any) -> list[float]:
+    steps = [steps] if np.ndim(steps) == 0 else list(np.asarray(steps, dtype=float).ravel())
+    if not steps:
+        raise InputError("step", "[]", "at least one step > 0")
+    return [v.positive("step", h) for h in steps]
+
+
+#: The most steps of all pendulums together (minutes of work on a few cores).
+MAX_TOTAL_STEPS = 10**11
+#: The most rows (pendulum, step, method) of one sweep: about 400 MB of results.
+MAX_ROWS = 10**6
+
+
+def _check_work(alpha: np.ndarray, length: np.ndarray, g: float, steps: list[float], methods: int) -> None:
+    """Refuse by arithmetic, before any allocation, a step no pendulum search can take or a sweep too long.
+
+    Each pendulum runs to ``1.5 T + 4h`` (:func:`pendulab.crossing.default_t_max`): at most
+    :data:`pendulab.taylor.MAX_STEPS` steps each, :data:`MAX_TOTAL_STEPS` in all.
+    """
+    from ..crossing import default_t_max
+    from ..taylor import MAX_STEPS
+
+    rows = len(alpha) * len(steps) * methods
+    if rows > MAX_ROWS:  # each row holds about 400 bytes of result columns
+        raise InputError("amplitude", f"{len(alpha)} amplitudes",
+                         f"at most {MAX_ROWS // (len(steps) * methods)} amplitudes with {len(steps)} step(s) and "
+                         f"{methods} method(s): at most {MAX_ROWS:.0e} pendulums in one sweep")
+    periods = np.asarray(agm_period(length, alpha, g), dtype=float)
+    longest, total_time = float(periods.max()), float(periods.sum())
+    total = 0.0
+    for h in steps:
+        n = default_t_max(longest, h) / h
+        if not n <= MAX_STEPS:
+            raise InputError("step", h, f">= {default_t_max(longest, h) / MAX_STEPS:.3g} s: the longest period "
+                             f"({longest:.4g} s) needs 1.5 T / h steps, at most {MAX_STEPS:.0e}")
+        total += methods * (1.5 * total_time + 4 * h * len(periods)) / h
+    if not total <= MAX_TOTAL_STEPS:
+        raise InputError("step", min(steps), f"such that the sweep runs at most {MAX_TOTAL_STEPS:.0e} steps in all "
+                         f"(these need {total:.3g}); use larger steps, or fewer amplitudes or methods")
+
+
+def sweep(
+    amplitudes: Any,
+    steps: Any,
+    methods: Any = ("taylor2",),
+    lengths: Any = 1.0,
+    g: Any = G,
+    progress: Callable[[int], None] | None = None,
+    scheduler: Any = None,
+    chunk: int = CHUNK,
+) -> SweepResult:
+    """The period of many pendulums from simulation, for each method and step.
+
+    Parameters
+    ----------
+    amplitudes : array_like
+        ``alpha`` in ``(0, pi)`` (rad), one per pendulum.
+    steps : float or sequence of float
+        Steps ``h`` > 0.
+    methods : str or sequence of str
+        Integrators (see :func:`pendulab.methods.resolve`).
+    lengths : float or array_like
+        ``l`` > 0 (m), broadcast against ``amplitudes``.
+    g : float
+        m/s^2.
+    progress : callable, optional
+        Called with the number of pendulums just finished (for a progress bar).
+    scheduler : str or dask.distributed.Client, optional
+        Run the chunks on this Dask cluster (address like ``"tcp://10.0.0.1:8786"``).
+    chunk : int
+        Pendulums per chunk (per task).
+
+    Returns
+    -------
+    SweepResult
+        ``len(methods) * len(steps) * n`` rows, grouped by method then step.
+
+    Notes
+    -----
+    Each pendulum is simulated to ``t_max = 1.5 T + 4h``
+    (:func:`pendulab.crossing.default_t_max`); a pendulum that leaves the oscillation or
+    does not return gets a status other than ``"found"`` and NaN estimates.
+    """
+    alpha = np.atleast_1d(np.asarray(_check_amplitudes(amplitudes), dtype=float)).ravel()
+    if len(alpha) == 0:
+        raise InputError("amplitude", "[]", "at least one amplitude in (0, pi)")
+    if np.any(alpha == 0):
+        raise InputError("amplitude", 0, "> 0 for a period from a simulation (at rest nothing moves)")
+    length = np.asarray(lengths, dtype=float)
+    bad = ~(np.isfinite(length) & (length > 0))
+    if bad.any():
+        v.positive("length", length[bad].flat[0])
+    try:
+        alpha, length = (np.ascontiguousarray(a, dtype=float) for a in np.broadcast_arrays(alpha, length))
+    except ValueError:
+        raise InputError("lengths", f"shape {length.shape}", f"a number or an array of shape {alpha.shape}") from None
+    g = v.positive("g", g)
+    hs = _check_steps(steps)
+    ms = _check_methods(methods)
+    chunk = v.integer("chunk", chunk, 1)
+    _check_work(alpha, length, g, hs, len(ms))
+    bounds = [(i, min(i + chunk, len(alpha))) for i in range(0, len(alpha), chunk)]
+    jobs = [(name, code, order, h, lo, hi) for name, code, order in ms for h in hs for lo, hi in bounds]
+
+    if scheduler is None:
+        parts = []
+        for _, code, order, h, lo, hi in jobs:
+            parts.append(run_chunk(code, order, alpha[lo:hi], length[lo:hi], g, h))
+            if progress is not None:
+                progress(hi - lo)
+    else:
+        from .cluster import run_on_cluster
+
+        parts = run_on_cluster(scheduler, jobs, alpha, length, g, progress)
+
+    cols: dict[str, list] = {k: [] for k in ("method", "order", "step", "length", "amplitude")}
+    for (name, _, order, h, lo, hi) in jobs:
+        cols["method"].append(np.full(hi - lo, name, dtype=object))
+        cols["order"].append(np.full(hi - lo, order, dtype=np.int64))
+        cols["step"].append(np.full(hi - lo, h))
+        cols["length"].append(length[lo:hi])
+        cols["amplitude"].append(alpha[lo:hi])
+    columns = {k: np.concatenate(c) for k, c in cols.items()}
+    columns["method"] = columns["method"].astype(str)
+    for key in ("exact", "status", "steps", "linear", "cubic", "cubic_error_estimate"):
+        columns[key] = np.concatenate([p[key] for p in parts])
+    columns["status"] = np.asarray(STATUS)[columns["status"]]
+    columns["linear_error"] = columns["linear"] - columns["exact"]
+    columns["cubic_error"] = columns["cubic"] - columns["exact"]
+    return SweepResult(columns)
