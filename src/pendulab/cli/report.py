@@ -44,6 +44,9 @@ def report(more: tuple[str, ...], students: str, lang: str, output: str) -> None
 
     for package in ("typst", "matplotlib"):
         require(package, "pendulab report")
+    from .._warm import warm_kernels
+
+    warm_kernels()  # compiles while the report imports matplotlib and typst
     from ..report import build_report
 
     ctx = click.get_current_context()

@@ -32,7 +32,10 @@ def serve(port: int, host: str) -> None:
 
     import uvicorn
 
+    from .._warm import warm_kernels
     from ..web import create_app
+
+    warm_kernels()  # the first request finds the kernels compiled
 
     where = f"[{host}]" if ":" in host else host
     click.echo(f"pendulab explorer: http://{where}:{port}/   (Ctrl+C to stop)", err=True)
