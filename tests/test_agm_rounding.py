@@ -77,7 +77,7 @@ def test_half_angle_cos_is_accurate_to_double_double():
 
 
 def test_failed_rounding_tests_are_recomputed():
-    # About one amplitude in 10^5 fails the cheap test; find some and check they come out right.
+    # A few amplitudes in 10^6 fail the cheap test; find some and check they come out right.
     alpha = np.random.default_rng(0).uniform(0, math.pi, 1_000_000)
     out, flags = np.empty(alpha.size), np.empty(alpha.size, np.int8)
     agm_periods_dd(alpha, np.array([1.0]), G, out, out[:0], flags)

@@ -5,7 +5,7 @@ as an unevaluated sum ``th + tl`` of two doubles (double-double: Dekker, Numer. 
 (1971) 224-242; the error-free transformations of Ogita, Rump, Oishi, SIAM J. Sci.
 Comput. 26 (2005) 1955-1988) with a relative error below :data:`ERROR_BOUND`, then
 rounds it. Where ``th + tl +- ERROR_BOUND th`` do not all round to the same double
-(about one amplitude in 10^5), the kernel flags the element and
+(a few amplitudes in 10^6), the kernel flags the element and
 :func:`pendulab.period.agm_period` computes it again with mpmath. The result is the
 double nearest to the true period of the input doubles.
 
@@ -34,9 +34,9 @@ BLOCK = 32
 ERROR_BOUND = 2.0**-72
 
 # error_model="numpy": a division by zero gives inf, not an exception (a branch that would
-# stop the vectoriser). fastmath: no NaNs or infinities (inputs are checked), signed zeros
-# ignored, a * b + c may fuse; never reassociation, which would undo TwoSum.
-_FLAGS = {"nnan", "ninf", "nsz", "contract"}
+# stop the vectoriser). fastmath "contract" only: a * b + c may fuse into one rounding
+# (more accurate); never reassociation, which would undo TwoSum.
+_FLAGS = {"contract"}
 _jit = njit(cache=True, nogil=True, error_model="numpy", fastmath=_FLAGS)
 _inline = njit(cache=True, nogil=True, error_model="numpy", fastmath=_FLAGS, inline="always")
 

@@ -204,7 +204,7 @@ def agm_period(length: Any, amplitude: Any, g: Any = G, iterations: int | None =
     out = np.empty(flat_a.size)
     flags = np.empty(flat_a.size, np.int8)
     agm_periods_dd(flat_a, flat_l, g, out, out[:0], flags)
-    for i in np.flatnonzero(flags):  # the rounding test failed: about 1 in 10^5
+    for i in np.flatnonzero(flags):  # the rounding test failed: a few in 10^6
         out[i] = nearest_period(float(flat_l[i if flat_l.size > 1 else 0]), float(flat_a[i]), g)
     return out.reshape(shape)
 
