@@ -41,6 +41,8 @@ def test_inverse_cubic_estimates_its_own_error():
 def test_repeated_nodes_are_rejected():
     with pytest.raises(InputError, match="distinct"):
         divided_differences([0.0, 0.0, 1.0], [1.0, 2.0, 3.0])
+    with pytest.raises(InputError, match="distinct"):  # the fifth node too
+        inverse_cubic([1.0, 0.5, -0.5, -1.0], [0.0, 1.0, 2.0, 3.0], (0.5, -1.0))
 
 
 # ------------------------------------------------------------------ scaling and the rounding level

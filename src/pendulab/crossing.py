@@ -19,7 +19,7 @@ from . import _validate as v
 from .cases import G
 from .dense import dense_crossing
 from .errors import InputError, LeftOscillationError, NoReturnError, NumericalError
-from .interpolation import InverseInterpolation, inverse_cubic
+from .interpolation import InverseInterpolation, inverse_cubic, linear_zero
 from .methods import Status, resolve
 from .period import agm_period
 from .results import Result
@@ -179,7 +179,7 @@ def estimate_period(
     # Times relative to t0, t_k = k h (6): the nodes j-2 .. j+2.
     t = (j - 2 + np.arange(5)) * step
     z2_j, z2_j1 = z2w[2], z2w[3]
-    linear = t[2] + step * z2_j / (z2_j - z2_j1)
+    linear = linear_zero(t[2], step, z2_j, z2_j1)
     interp = inverse_cubic(z2w[1:5], t[1:5], (z2w[0], t[0]))
     dense = dense_crossing((z1w[2], z1w[3]), (z2w[2], z2w[3]), c, step, float(t[2]))
     return PeriodEstimate(

@@ -84,6 +84,45 @@ class InverseInterpolation(Result):
         return abs(self.error_estimate) > self.rounding_level
 
 
+def linear_zero(t_j, h, z2_j, z2_j1):
+    """The zero of the line through ``(t_j, z2_j)`` and ``(t_j + h, z2_j1)``: the linear
+    estimate of problem 3(c). Scalars or arrays (one pendulum per element)."""
+    return t_j + h * z2_j / (z2_j - z2_j1)
+
+
+def inverse_cubic_rows(z2: np.ndarray, t: np.ndarray, fifth_z2: np.ndarray, fifth_t: np.ndarray):
+    """``p(0)`` and the error estimate of :func:`inverse_cubic` for each row of a table.
+
+    ``z2, t`` have shape ``(m, 4)``, ``fifth_z2, fifth_t`` shape ``(m,)``. Each row's nodes are
+    scaled by the power of two nearest above their largest ``|z2|`` (see
+    :func:`inverse_cubic`), and Newton's divided differences are the in-place table of
+    Burden-Faires, Algorithm 3.2, on the five nodes at once; its first four coefficients
+    are those of the cubic on the first four nodes. Nothing is checked: a row with repeated
+    or zero nodes gives ``inf`` or NaN (the sweep masks the pendulums not found).
+
+    Returns
+    -------
+    value, error_estimate : ndarray, shape (m,)
+    coef : ndarray, shape (m, 5)
+        The divided differences of the scaled five-node table.
+    x5 : ndarray, shape (m, 5)
+        The scaled nodes.
+    exponent : ndarray of int, shape (m,)
+        ``e`` with the nodes scaled by ``2^-e``.
+    """
+    x5 = np.concatenate([np.asarray(z2, dtype=float), np.asarray(fifth_z2, dtype=float)[:, None]], axis=1)
+    exponent = np.frexp(np.max(np.abs(x5), axis=1))[1]
+    x5 = np.ldexp(x5, -exponent[:, None])
+    coef = np.concatenate([np.asarray(t, dtype=float), np.asarray(fifth_t, dtype=float)[:, None]], axis=1)
+    for k in range(1, 5):
+        coef[:, k:] = (coef[:, k:] - coef[:, k - 1 : -1]) / (x5[:, k:] - x5[:, : 5 - k])
+    p = coef[:, 3].copy()
+    for k in (2, 1, 0):  # Horner's rule at 0 on the first four nodes
+        p = p * (0.0 - x5[:, k]) + coef[:, k]
+    error = coef[:, 4] * np.prod(0.0 - x5[:, :4], axis=1)
+    return p, error, coef, x5, exponent
+
+
 def inverse_cubic(z2: np.ndarray, t: np.ndarray, fifth: tuple[float, float]) -> InverseInterpolation:
     """Inverse cubic interpolation ``T ~ p(0)`` through four points, problem 3(d).
 
@@ -110,14 +149,13 @@ def inverse_cubic(z2: np.ndarray, t: np.ndarray, fifth: tuple[float, float]) -> 
     big = float(np.max(np.abs(x5)))
     if not (math.isfinite(big) and big > 0):
         raise InputError("z2", x5.tolist(), "finite interpolation nodes, not all zero")
-    e = math.frexp(big)[1]
-    x5 = np.ldexp(x5, -e)
+    if len(np.unique(x5)) != len(x5):
+        raise InputError("z2", x5.tolist(), "distinct interpolation nodes")
+    values, errors, five2, x52, exps = inverse_cubic_rows(z2[None, :], t[None, :], x5[None, 4], t5[None, 4])
+    value, error, five, x5, e = float(values[0]), float(errors[0]), five2[0], x52[0], int(exps[0])
+    coef = five[:4]
     x = x5[:4]
-    coef = divided_differences(x, t)
-    value = float(newton_eval(coef, x, 0.0))
-    five = divided_differences(x5, t5)
     prod = float(np.prod(0.0 - x))
-    error = float(five[-1]) * prod
     # Weights of the fourth divided difference, 1/prod_(i != k)(x_k - x_i) (Burden-Faires (3.10)).
     weights = [1.0 / float(np.prod([x5[k] - x5[i] for i in range(5) if i != k])) for k in range(5)]
     rounding = abs(prod) * math.fsum(abs(w) * math.ulp(float(tk)) / 2 for w, tk in zip(weights, t5))

@@ -24,12 +24,11 @@ from ..cases import G
 from ..errors import InputError
 from ..methods import resolve
 from ..period import _check_amplitudes, agm_period
-from .chunk import inverse_cubic_rows, run_chunk
+from .chunk import run_chunk
 from .kernel import BLOCK, first_returns, first_returns_serial
 from .result import STATUS, SweepResult
 
-__all__ = ["BLOCK", "CHUNK", "STATUS", "SweepResult", "first_returns", "first_returns_serial",
-           "inverse_cubic_rows", "sweep"]
+__all__ = ["BLOCK", "CHUNK", "STATUS", "SweepResult", "first_returns", "first_returns_serial", "sweep"]
 
 #: Pendulums per chunk (one progress tick, one Dask task): large enough to keep
 #: both cores busy, small enough for a smooth progress bar.

@@ -1,38 +1,18 @@
 """One chunk of a sweep: the exact periods, the kernel, and the estimates of problem 3(d).
 
 The window of five points around the sign change gives the linear and the inverse cubic
-estimates, vectorised over the pendulums (same formulas as :mod:`pendulab.interpolation`).
+estimates, vectorised over the pendulums by the functions :func:`pendulab.crossing.estimate_period`
+uses (:func:`pendulab.interpolation.linear_zero`, :func:`pendulab.interpolation.inverse_cubic_rows`).
 :func:`run_chunk` is pure: a Dask worker runs it as it is.
 """
 from __future__ import annotations
 
 import numpy as np
 
+from ..interpolation import inverse_cubic_rows, linear_zero
 from ..methods import Status
 from ..period import agm_period
 from .kernel import first_returns, first_returns_serial
-
-
-def inverse_cubic_rows(z2: np.ndarray, t: np.ndarray, fifth_z2: np.ndarray, fifth_t: np.ndarray):
-    """:func:`pendulab.interpolation.inverse_cubic`'s ``p(0)`` and error estimate, row by row.
-
-    ``z2, t`` have shape ``(m, 4)``. Newton's divided differences (Burden-Faires,
-    Algorithm 3.2) computed by the same in-place table, vectorised over the rows.
-    """
-    x5 = np.concatenate([z2, fifth_z2[:, None]], axis=1)
-    # Scaled by a power of two per row, as inverse_cubic does: the same results bit for
-    # bit, but no overflow of t[z2_0..z2_4] ~ h/z2^4 at tiny amplitudes.
-    x5 = np.ldexp(x5, -np.frexp(np.max(np.abs(x5), axis=1))[1][:, None])
-    z2 = x5[:, :4]
-    coef = np.concatenate([t, fifth_t[:, None]], axis=1).astype(float)
-    for k in range(1, 5):
-        coef[:, k:] = (coef[:, k:] - coef[:, k - 1 : -1]) / (x5[:, k:] - x5[:, : 5 - k])
-    # The first four coefficients are those of the cubic on the first four nodes.
-    p = coef[:, 3].copy()
-    for k in (2, 1, 0):
-        p = p * (0.0 - z2[:, k]) + coef[:, k]
-    error = coef[:, 4] * np.prod(0.0 - z2, axis=1)
-    return p, error
 
 
 def run_chunk(code: int, order: int, alphas: np.ndarray, lengths: np.ndarray, g: float, h: float,
@@ -55,8 +35,8 @@ def run_chunk(code: int, order: int, alphas: np.ndarray, lengths: np.ndarray, g:
     found = status == Status.FOUND
     t = (j[:, None] - 2 + np.arange(5)) * h  # t_k = k h (6): nodes j-2 .. j+2
     with np.errstate(invalid="ignore", divide="ignore"):
-        linear = t[:, 2] + h * z2w[:, 2] / (z2w[:, 2] - z2w[:, 3])
-        cubic, err_est = inverse_cubic_rows(z2w[:, 1:5], t[:, 1:5], z2w[:, 0], t[:, 0])
+        linear = linear_zero(t[:, 2], h, z2w[:, 2], z2w[:, 3])
+        cubic, err_est, *_ = inverse_cubic_rows(z2w[:, 1:5], t[:, 1:5], z2w[:, 0], t[:, 0])
     nan = np.full(len(alphas), np.nan)
     linear = np.where(found, linear, nan)
     cubic = np.where(found, cubic, nan)
