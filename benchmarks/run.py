@@ -22,9 +22,10 @@ sys.path.insert(0, str(Path(__file__).resolve().parent))
 
 
 def ratio(row: dict) -> float | None:
+    """pendulab's value over the peer's: a rate (higher is better) or a time (lower is better)."""
     if row.get("peer") in (None, 0):
         return None
-    return row["peer"] / row["ours"] if row.get("lower") else row["ours"] / row["peer"]
+    return row["ours"] / row["peer"]
 
 
 def print_table(rows: list[dict]) -> None:
@@ -37,7 +38,7 @@ def print_table(rows: list[dict]) -> None:
         print(f"| {r['what']:66} | {r['ours']:>9.3g} | {r['peer_name']:26} | {peer:>10} | "
               f"{'' if rt is None else f'{rt:.2f}x':>6} | {r['target']:11} |")
         if r.get("note"):
-            print(f"|   {r['note']}")
+            print(f"|   {r['note']} | | | | | |")
 
 
 def main() -> None:
@@ -57,7 +58,7 @@ def main() -> None:
     rows += start_rows() + ulps_rows(10_000 if quick else 100_000)
     print()
     print_table(rows)
-    print(f"\nratio: pendulab's speed over the peer's (times: the peer's over pendulab's); "
+    print(f"\nratio: pendulab's value over the peer's (rates: higher is better; times: lower is better); "
           f"{time.perf_counter() - t:.0f} s; load average now {os.getloadavg()[0]:.2f}")
 
 
