@@ -6,15 +6,17 @@ period search streamed over 1.5 T / h = 93 000 steps. Side by side, as ratios to
 library's own work (the floor the web layer cannot go below):
 
 1. library   ``taylor.simulate`` + ``crossing.estimate_period`` + ``period.agm_period``
-2. presenter ``web.api.simulate_view`` + the JSON encoding of the response, in process
+2. presenter ``web.api.simulate_view`` + the JSON encoding of the response, in process:
+             one streamed pass keeping each column's min/max of theta and of the energy,
+             the phase and animation samples, the exact motion and the global error
 3. HTTP      a GET to ``pendulab serve`` on loopback (keep-alive), JSON decoded
 
 The aim (issue 5) is under 50 ms for (3). Run: ``.venv/bin/python benchmarks/bench_web.py``
-(about 15 s).
+(about 15 s). The load benchmark (200 heavy requests at once) is
+``benchmarks/bench_web_load.py``.
 """
 from __future__ import annotations
 
-import json
 import math
 import statistics
 import time
@@ -24,8 +26,9 @@ import httpx
 from pendulab.crossing import estimate_period
 from pendulab.period import agm_period
 from pendulab.taylor import simulate
-from pendulab.web.child import serve_in_child
 from pendulab.web import api
+from pendulab.web.app import _encode
+from pendulab.web.child import serve_in_child
 
 LENGTH, ALPHA, STEP, T_MAX = 3.5, 4 * math.pi / 5, 1e-4, 20.0
 QUERY = {"length": "3.5", "amplitude": "4pi/5", "step": "1e-4", "t_max": "20"}
@@ -50,7 +53,7 @@ def library() -> None:
 
 
 def presenter() -> None:
-    json.dumps(api.simulate_view(QUERY), separators=(",", ":")).encode()
+    _encode(api.simulate_view(QUERY))  # the app's own encoder
 
 
 def main() -> None:

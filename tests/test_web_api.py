@@ -44,6 +44,15 @@ P5_QUERY = {"length": "3.5", "amplitude": "4pi/5", "step": "1e-3", "t_max": "10"
 
 # ---------------------------------------------------------------- good requests
 
+def test_config_lists_the_family_taylor_p(client):
+    family = client.get("/api/config").json()["family"]
+    assert [m["name"] for m in family] == [f"taylor:{p}" for p in range(1, methods.MAX_TAYLOR_ORDER + 1)]
+    assert [m["order"] for m in family] == list(range(1, 31)) and "Euler" in family[0]["description"]
+    for m in family[::7]:  # each one simulates as itself
+        r = client.get("/api/simulate", params=FIG3_QUERY | {"method": m["name"]})
+        assert r.status_code == 200 and r.json()["input"]["method"] == m["name"]
+
+
 def test_config_lists_the_methods_registered_now(client, monkeypatch):
     body = client.get("/api/config").json()
     assert [m["name"] for m in body["methods"]] == list(taylor.METHODS)
@@ -77,14 +86,14 @@ def test_simulate_reproduces_figure3(client):
     r = client.get("/api/simulate", params=FIG3_QUERY)
     assert r.status_code == 200
     body = r.json()
-    assert body["n_steps"] == 21 and body["stride"] == 1 and body["points"] == 22
+    assert body["n_steps"] == 21 and body["thinning"] == "none" and body["points"] == 22
     t = np.array(body["t"])
     for t_ref, (z1, z2) in FIGURE3.items():
         i = int(round(t_ref / 0.1))
         assert t[i] == pytest.approx(t_ref, abs=1e-12)
         assert body["theta"][i] == pytest.approx(z1, rel=5e-12, abs=1e-12)
         assert body["omega"][i] == pytest.approx(z2, rel=5e-12, abs=1e-12)
-    assert body["units"] == {"t": "s", "theta": "rad", "omega": "rad/s", "period": "s"}
+    assert body["units"] == {"t": "s", "theta": "rad", "omega": "rad/s", "period": "s", "energy": "m g l"}
     # Figure 2: the period lies in (2.0, 2.1) s.
     est = body["period"]["estimate"]
     assert est["bracket"] == pytest.approx([2.0, 2.1])
@@ -106,19 +115,97 @@ def test_simulate_estimates_are_the_librarys(client):
     assert got["bracket"][0] < exact < got["bracket"][1] + 1e-3  # h = 1e-3: the bracket is off by O(h^2 T)
 
 
-def test_simulate_thins_a_long_trajectory_evenly(client):
+def test_simulate_keeps_every_columns_min_and_max(client):
+    # 100 001 steps in 1000 columns: each column's smallest and largest theta, at their
+    # steps, as the library's own full trajectory has them.
     q = {"length": "3.5", "amplitude": "4pi/5", "step": "1e-4", "t_max": "10", "points": "2000"}
     body = client.get("/api/simulate", params=q).json()
-    assert body["n_steps"] == 100_000
-    assert 1000 < body["points"] <= 2000 == api.DEFAULT_PLOT_POINTS
-    k = body["stride"]
-    assert k == math.ceil(100_000 / 1999)
+    assert body["n_steps"] == 100_000 and body["columns"] == 1000
+    assert body["thinning"] == "min/max per column" and body["points"] <= 2000
     full = taylor.simulate(3.5, 0.8 * math.pi, 1e-4, 10.0)
-    idx = list(range(0, 100_001, k))
-    idx += [] if idx[-1] == 100_000 else [100_000]
-    assert body["theta"] == full.theta[idx].tolist()
-    assert body["omega"] == full.omega[idx].tolist()
-    assert body["t"][-1] == pytest.approx(10.0)
+    idx = np.rint(np.array(body["t"]) / 1e-4).astype(int)
+    assert np.all(np.diff(idx) > 0) and idx[0] == 0
+    assert body["theta"] == full.theta[idx].tolist() and body["omega"] == full.omega[idx].tolist()
+    col = np.arange(100_001) * 1000 // 100_001
+    lo = np.minimum.reduceat(full.theta, np.searchsorted(col, np.arange(1000)))
+    hi = np.maximum.reduceat(full.theta, np.searchsorted(col, np.arange(1000)))
+    got_col = idx * 1000 // 100_001
+    for c in (0, 1, 250, 999):
+        mine = full.theta[idx[got_col == c]]
+        assert mine.min() == lo[c] and mine.max() == hi[c]
+    assert np.array_equal(np.unique(got_col), np.arange(1000))
+
+
+def test_long_run_plots_keep_the_shape():
+    # l = 1, 30 deg, h = 1e-3, t_max = 2000 s: 980 periods. Every column that holds a turn
+    # of the simulation reaches its extreme; the phase curve has no chord across the orbit.
+    p = {"length": "1", "amplitude": "30deg", "step": "1e-3", "t_max": "2000"}
+    body = api.simulate_view(p)
+    alpha = body["input"]["amplitude"]  # 30 deg exactly, rounded once: may differ from math.radians(30)
+    assert alpha == pytest.approx(math.pi / 6, rel=1e-15)
+    full = taylor.simulate(1, alpha, 1e-3, 2000.0)
+    theta = np.array(body["theta"])
+    t = np.array(body["t"])
+    # Columns of the plot (here 400 pixels): wherever the trajectory has a local max or min.
+    px = np.floor(t / 2000.0 * 400).astype(int)
+    turns = np.flatnonzero((full.omega[:-1] > 0) != (full.omega[1:] > 0))
+    for i in turns[::7]:
+        c = min(int(full.t[i] / 2000.0 * 400), 399)
+        drawn = theta[px == c]
+        target = full.theta[i]
+        assert (drawn.max() if target > 0 else -drawn.min()) >= 0.99 * abs(target)
+        assert abs(target) == pytest.approx(alpha, rel=1e-3)
+    ph_th = np.array(body["phase"]["theta"], dtype=float)
+    ph_om = np.array(body["phase"]["omega"], dtype=float)
+    width = np.nanmax(ph_th) - np.nanmin(ph_th)
+    seg = np.hypot(np.diff(ph_th) / width, np.diff(ph_om) / (np.nanmax(ph_om) - np.nanmin(ph_om)))
+    assert np.nanmax(seg) < 0.05 and body["phase"]["orbits"] > 2
+    # The animation's samples are the simulation's states at their times.
+    ft = np.array(body["frames"]["t"])
+    fi = np.rint(ft / 1e-3).astype(int)
+    assert body["frames"]["theta"] == full.theta[fi].tolist()
+    assert body["frames"]["per_period"] >= 8
+
+
+def test_exact_overlay_error_and_energy_are_the_librarys(client):
+    from pendulab.motion import energy, exact_motion
+
+    q = {"length": "1", "amplitude": "pi/4", "step": "1e-2", "t_max": "30", "method": "taylor2"}
+    body = client.get("/api/simulate", params=q).json()
+    alpha = math.pi / 4
+    T = ellipk_period(1, alpha)
+    ex_t, ex_th = np.array(body["exact"]["t"]), np.array(body["exact"]["theta"])
+    # The exact curve reaches +-alpha at its turns k T/2 (mpmath's T), and is the exact motion elsewhere.
+    for k in range(1, int(30 / (T / 2))):
+        i = np.argmin(abs(ex_t - k * T / 2))
+        assert ex_t[i] == pytest.approx(k * T / 2, rel=1e-12) and ex_th[i] == (-1) ** k * alpha
+    assert np.allclose(ex_th, exact_motion(1, alpha, ex_t).theta, rtol=0, atol=1e-12)
+    full = taylor.simulate(1, alpha, 1e-2, 30.0)
+    et = np.array(body["error"]["t"])
+    ei = np.rint(et / 1e-2).astype(int)
+    assert np.allclose(body["error"]["theta"], full.theta[ei] - exact_motion(1, alpha, et).theta, rtol=0, atol=1e-14)
+    drift = energy(full.theta, full.omega, 1.0) / 9.80665 + math.cos(alpha)  # in m g l
+    gt = np.array(body["energy"]["t"])
+    assert np.allclose(body["energy"]["drift"], drift[np.rint(gt / 1e-2).astype(int)], rtol=0, atol=1e-14)
+    assert body["flags"]["energy_drift_max"] == pytest.approx(np.max(np.abs(drift)), rel=1e-9)
+
+
+def test_blown_up_simulation_is_flagged(client):
+    # l = 10 um, h = 1e-3 s: 3 steps a period; the discrete pendulum spins over the top.
+    body = client.get("/api/simulate", params={"length": "1e-5", "amplitude": "30deg", "step": "1e-3", "t_max": "20"}).json()
+    flags = body["flags"]
+    assert not flags["trustworthy"] and flags["left_oscillation_t"] > 0
+    assert any("over the top" in w for w in flags["warnings"])
+    full = taylor.simulate(1e-5, body["input"]["amplitude"], 1e-3, 20.0)
+    first = int(np.argmax(np.abs(full.theta) >= math.pi))
+    assert flags["left_oscillation_t"] == pytest.approx(first * 1e-3)
+    # Energy drift, the other kind: Euler's method gains energy every swing.
+    body = client.get("/api/simulate", params={"length": "1", "amplitude": "30deg", "step": "1e-2", "t_max": "20",
+                                                "method": "taylor:1"}).json()
+    assert not body["flags"]["trustworthy"] and "energy drifted" in body["flags"]["warnings"][0]
+    # A good simulation is not flagged.
+    body = client.get("/api/simulate", params=P5_QUERY | {"method": "rk4"}).json()
+    assert body["flags"]["trustworthy"] and body["flags"]["warnings"] == []
 
 
 @pytest.mark.parametrize("n, points", [(5, 10), (10, 10), (11, 10), (100, 7), (1001, 2), (10**6, 999)])
@@ -138,12 +225,15 @@ def test_simulate_without_period_says_why(client):
     assert body["period"]["estimate"] is None and "over the top" in body["period"]["reason"]
 
 
-def test_simulate_blow_up_is_valid_json_with_nulls(client):
+def test_simulate_blow_up_is_valid_json_and_flagged(client):
     # h = 1 with c = -9.8: the Taylor map is unstable, theta overflows to inf then NaN.
     r = client.get("/api/simulate", params={"length": "1", "amplitude": "3", "step": "1", "t_max": "2000", "points": "3000"})
     assert r.status_code == 200
-    theta = r.json()["theta"]
-    assert theta[0] == 3.0 and None in theta
+    body = r.json()
+    full = taylor.simulate(1, 3, 1, 2000)
+    first_bad = int(np.argmax(~np.isfinite(full.theta) | ~np.isfinite(full.omega)))
+    assert first_bad > 0 and body["flags"]["nonfinite_t"] == first_bad
+    assert body["theta"][0] == 3.0 and "blew up" in body["flags"]["warnings"][0]
 
 
 @pytest.mark.parametrize("method", list(taylor.METHODS))
@@ -362,3 +452,54 @@ def test_serve_on_a_busy_port_is_one_line_exit_2(capsys):
 def test_serve_bad_port(capsys, bad):
     assert main(["serve", "--port", bad]) == 2
     assert "--port" in capsys.readouterr().err
+
+
+def test_api_docs_are_served_locally(client):
+    import swagger_ui_bundle
+
+    page = client.get("/api/docs")
+    assert page.status_code == 200
+    assert "http://" not in page.text and "https://" not in page.text
+    js = client.get("/vendor/swagger/swagger-ui-bundle.js")
+    assert js.content == (Path(swagger_ui_bundle.swagger_ui_path) / "swagger-ui-bundle.js").read_bytes()
+    assert client.get("/vendor/swagger/index.html").status_code == 404
+    # The Swagger UI shipped reads OpenAPI 3.0 documents only.
+    schema = client.get("/api/openapi.json").json()
+    assert schema["openapi"].startswith("3.0.") and "/api/simulate" in schema["paths"]
+
+
+def test_csv_streams_in_blocks():
+    # 10^6 rows are never held at once: the text comes in blocks of CSV_BLOCK rows, each
+    # computed when asked for, and they join into the library's trajectory.
+    p = api.parse_simulation({"length": "1", "amplitude": "1", "step": "1e-3", "t_max": "50"})
+    blocks = api.csv_blocks(p, api.MAX_POINTS)
+    first = next(blocks)
+    assert first.count("\n") == 2  # the header and t = 0
+    rest = list(blocks)
+    assert len(rest) == math.ceil(50_000 / api.CSV_BLOCK)
+    assert max(b.count("\n") for b in rest) == api.CSV_BLOCK
+    rows = np.array([[float(x) for x in line.split(",")] for line in (first + "".join(rest)).splitlines()[1:]])
+    full = taylor.simulate(1, 1, 1e-3, 50.0)
+    assert rows[:, 1].tolist() == full.theta.tolist() and rows[:, 2].tolist() == full.omega.tolist()
+    assert np.array_equal(rows[:, 0], full.t)
+
+
+def test_serve_suggests_a_free_port_and_lists_lan_addresses(capsys, monkeypatch):
+    import socket
+
+    from pendulab.cli import serve as serve_cmd
+
+    with socket.socket() as s:
+        s.bind(("127.0.0.1", 0))
+        s.listen()
+        port = s.getsockname()[1]
+        assert main(["serve", "--port", str(port)]) == 2
+        err = capsys.readouterr().err
+        free = int(err.split("port ")[-1].split()[0])
+        assert free > port and f"pendulab serve --port {free}" in err
+    with socket.socket() as s:
+        s.bind(("127.0.0.1", free))  # it was free indeed
+    assert all(not a.startswith("127.") for a in serve_cmd.lan_addresses())
+    monkeypatch.setattr(serve_cmd, "lan_addresses", lambda: ["192.168.1.20", "10.0.0.5"])
+    assert serve_cmd.urls("0.0.0.0", 8000) == ["http://192.168.1.20:8000/", "http://10.0.0.5:8000/", "http://127.0.0.1:8000/"]
+    assert serve_cmd.urls("127.0.0.1", 8000) == ["http://127.0.0.1:8000/"]

@@ -12,6 +12,7 @@ import os
 import time
 from urllib.parse import parse_qs, urlparse
 
+import numpy as np
 import pytest
 from playwright.sync_api import sync_playwright
 
@@ -134,7 +135,10 @@ def test_every_method_is_offered(page, server):
     page.goto(server + "/")
     page.wait_for_function("document.querySelectorAll('#method option').length > 0")
     offered = page.eval_on_selector_all("#method option", "os => os.map(o => o.value)")
-    assert offered == list(taylor.METHODS)
+    # The registry: its named methods, then taylor:P for every order, Euler's method (taylor:1) first.
+    assert offered == list(taylor.METHODS) + [f"taylor:{p}" for p in range(1, 31)]
+    assert "Euler" in page.locator("#method option[value='taylor:1']").text_content()
+    assert page.eval_on_selector_all("#method2 option", "os => os.map(o => o.value)") == [""] + offered
 
 
 def test_csv_download_is_the_trajectory(page, server, tmp_path):
@@ -183,3 +187,207 @@ def test_play_pause(page, server):
     a = clock()
     page.wait_for_timeout(400)
     assert clock() == a  # paused
+
+
+# ---------------------------------------------------------------- every screen, every state
+
+LONG_RUN = "/?length=1&amplitude=30&unit=deg&g=9.80665&method=taylor2&step=1e-3&t_max=2000"
+VIEWPORTS = [(390, 844), (1024, 768), (1400, 900)]
+
+
+def open_page(browser, server, url: str, width: int = 1400, height: int = 1100):
+    context = browser.new_context(viewport={"width": width, "height": height})
+    pg = context.new_page()
+    pg.outside, pg.errors = [], []
+
+    def route(r):
+        if r.request.url.startswith(server + "/"):
+            r.continue_()
+        else:
+            pg.outside.append(r.request.url)
+            r.abort()
+
+    pg.route("**/*", route)
+    pg.on("pageerror", lambda e: pg.errors.append(str(e)))
+    pg.on("console", lambda m: pg.errors.append(m.text) if m.type == "error" else None)
+    pg.goto(server + url)
+    pg.wait_for_function("document.querySelectorAll('.js-plotly-plot .main-svg').length >= 6", timeout=60_000)
+    pg.wait_for_function("document.querySelector('#status').textContent.includes('steps of')", timeout=60_000)
+    return context, pg
+
+
+@pytest.mark.parametrize("width, height", VIEWPORTS)
+@pytest.mark.parametrize("url", ["/", LONG_RUN + "&method2=verlet",
+                                 "/?length=1e-5&amplitude=30&unit=deg&step=1e-3&t_max=20&scale=1"])
+def test_no_sideways_overflow_and_no_console_errors(browser, server, width, height, url):
+    context, pg = open_page(browser, server, url, width, height)
+    try:
+        pg.wait_for_timeout(500)  # a few animation frames, the cursor moving over the plots
+        assert pg.evaluate("document.documentElement.scrollWidth") <= width
+        # Nothing inside is cut off either: every control lies within the viewport's width.
+        right = pg.evaluate("Math.max(...[...document.querySelectorAll('input, select, button, .card')]"
+                            ".map(e => e.getBoundingClientRect().right))")
+        assert right <= width
+        assert pg.errors == [] and pg.outside == []
+        if os.environ.get("PENDULAB_SCREENSHOT_DIR"):  # to look at the page by eye
+            name = f"{width}x{height}_{abs(hash(url)) % 1000}.png"
+            pg.screenshot(path=str(Path(os.environ["PENDULAB_SCREENSHOT_DIR"]) / name), full_page=True)
+    finally:
+        context.close()
+
+
+def drawn(pg, plot_id: str, trace: int = 0) -> dict:
+    """A trace as plotly drew it: data, and each axis as (range, length in pixels)."""
+    return pg.evaluate(
+        """([id, i]) => { const gd = document.getElementById(id); const L = gd._fullLayout;
+        return {x: gd.data[i].x, y: gd.data[i].y, xr: L.xaxis.range, xl: L.xaxis._length, yr: L.yaxis.range, yl: L.yaxis._length}; }""",
+        [plot_id, trace])
+
+
+def test_long_run_plots_keep_their_shape(browser, server):
+    # l = 1, 30 deg, h = 1e-3, t_max = 2000 s: 980 periods on one plot.
+    context, pg = open_page(browser, server, LONG_RUN)
+    try:
+        alpha = math.radians(30)
+        full = taylor.simulate(1, alpha, 1e-3, 2000.0)
+        # theta(t): in every pixel column holding a turn, the drawn curve reaches the turn's
+        # value (+-alpha within 0.1 % for taylor2 at this step) within 1 %.
+        d = drawn(pg, "plot-theta")
+        t = np.array(d["x"], dtype=float)
+        y = np.array(d["y"], dtype=float)
+        px = np.floor((t - d["xr"][0]) / (d["xr"][1] - d["xr"][0]) * d["xl"]).astype(int)
+        turns = np.flatnonzero((full.omega[:-1] > 0) != (full.omega[1:] > 0)) + 1
+        assert len(turns) > 1900
+        checked = 0
+        for i in turns:
+            c = int(np.floor((full.t[i] - d["xr"][0]) / (d["xr"][1] - d["xr"][0]) * d["xl"]))
+            col = y[px == c]
+            value = full.theta[i]
+            assert abs(value) == pytest.approx(alpha, rel=1e-3)
+            reached = col.max() if value > 0 else -col.min()
+            assert reached >= 0.99 * abs(value), (full.t[i], reached, value)
+            checked += 1
+        assert checked == len(turns)
+        # Phase portrait: no drawn segment longer than 5 % of the orbit's width (in pixels).
+        d = drawn(pg, "plot-phase")
+        x = np.array([np.nan if v is None else v for v in d["x"]], dtype=float)
+        v = np.array([np.nan if w is None else w for w in d["y"]], dtype=float)
+        sx = d["xl"] / (d["xr"][1] - d["xr"][0])
+        sy = d["yl"] / (d["yr"][1] - d["yr"][0])
+        width_px = (np.nanmax(x) - np.nanmin(x)) * sx
+        seg = np.hypot(np.diff(x) * sx, np.diff(v) * sy)
+        assert np.nanmax(seg) <= 0.05 * width_px
+        assert np.sum(np.isnan(seg)) >= 2  # several orbits, apart
+        assert pg.errors == []
+    finally:
+        context.close()
+
+
+def clock(pg) -> tuple[float, float]:
+    parts = pg.locator("#clock").text_content().split()
+    return float(parts[2]), float(parts[6].rstrip("°"))
+
+
+def test_the_animation_shows_the_true_state_at_its_time(browser, server):
+    # Before: -15.6 deg shown at t = 1 s where the simulated pendulum is at -29.9 deg.
+    context, pg = open_page(browser, server, LONG_RUN + "&paused=1&t=1")
+    try:
+        t, shown = clock(pg)
+        assert t == 1.0 and pg.locator("#play").text_content() == "Play"
+        full = taylor.simulate(1, math.radians(30), 1e-3, 2.0)
+        assert shown == pytest.approx(math.degrees(full.theta[1000]), abs=0.01)
+        # The time cursor: the same time on theta(t), the error and energy plots, the same state on the phase portrait.
+        for plot in ("plot-theta", "plot-error", "plot-energy"):
+            assert pg.evaluate(f"document.getElementById('{plot}').layout.shapes[0].x0") == 1.0
+        dot = pg.evaluate("(() => { const gd = document.getElementById('plot-phase'); return gd.data[gd.data.length - 1].x[0]; })()")
+        assert math.degrees(dot) == pytest.approx(math.degrees(full.theta[1000]), abs=0.01)
+        # Moving the cursor moves all of them and goes into the URL.
+        pg.evaluate("(() => { const c = document.getElementById('cursor'); c.value = '1.5'; c.dispatchEvent(new Event('input')); })()")
+        t, shown = clock(pg)
+        assert t == 1.5 and shown == pytest.approx(math.degrees(full.theta[1500]), abs=0.01)
+        assert pg.evaluate("document.getElementById('plot-theta').layout.shapes[0].x0") == 1.5
+        assert parse_qs(urlparse(pg.url).query)["t"] == ["1.5"]
+    finally:
+        context.close()
+
+
+def test_period_marks_are_capped(browser, server):
+    # Before: 4898 dashed lines for t_max = 10000 s (15 s to draw).
+    context, pg = open_page(browser, server, "/?length=1&amplitude=30&unit=deg&step=1e-3&t_max=10000")
+    try:
+        shapes = pg.evaluate("document.getElementById('plot-theta').layout.shapes.length")
+        assert shapes <= 13
+        assert "periods of T" in pg.evaluate("document.getElementById('plot-theta').layout.title.text")
+    finally:
+        context.close()
+
+
+def test_blown_up_simulation_is_flagged_on_the_page(browser, server):
+    context, pg = open_page(browser, server, "/?length=1e-5&amplitude=30&unit=deg&step=1e-3&t_max=20")
+    try:
+        assert pg.locator("#flags").is_visible()
+        assert "over the top" in pg.locator("#flags").text_content()
+        assert pg.locator(".estimates.untrusted").count() == 1
+    finally:
+        context.close()
+
+
+def test_stale_results_are_dimmed_after_an_error(page, server):
+    page.goto(server + "/?length=3.5&amplitude=144&unit=deg&step=1e-3&t_max=20")
+    wait_for_period(page, ellipk_period(3.5, 0.8 * math.pi))
+    assert page.evaluate("getComputedStyle(document.getElementById('results')).opacity") == "1"
+    page.fill("#length", "abc")
+    page.wait_for_selector("#error:not([hidden])")
+    page.wait_for_function("getComputedStyle(document.getElementById('results')).opacity < 0.5")
+    assert "length" in page.locator("#error").text_content()
+    page.fill("#length", "2")
+    wait_for_period(page, ellipk_period(2, 0.8 * math.pi))
+    page.wait_for_function("getComputedStyle(document.getElementById('results')).opacity == 1")
+
+
+def test_every_new_control_is_in_the_url(page, server):
+    url = (server + "/?length=1&amplitude=pi%2F4&unit=rad&g=1.62&method=rk4&step=0.01&t_max=12"
+           "&method2=verlet&step2=0.02&speed=0.5&exact=0&scale=1&paused=1&t=2.5")
+    page.goto(url)
+    wait_for_period(page, ellipk_period(1, math.pi / 4, 1.62))
+    assert page.input_value("#method2") == "verlet" and page.input_value("#step2") == "0.02"
+    assert not page.is_checked("#exact") and page.is_checked("#scale")
+    assert page.locator("#play").text_content() == "Play" and clock(page)[0] == 2.5
+    assert parse_qs(urlparse(page.url).query) == parse_qs(urlparse(url).query)
+    # Two methods side by side: two tables, two curves.
+    assert page.locator("#est2-cubic").count() == 1
+    assert page.evaluate("document.getElementById('plot-theta').data.length") == 2  # no exact overlay: exact=0
+    # A method the menu may not list stays as the URL has it.
+    page.goto(server + "/?length=1&amplitude=30&unit=deg&step=1e-3&t_max=5&method=taylor:4")
+    wait_for_period(page, ellipk_period(1, math.pi / 6))
+    assert page.input_value("#method") == "taylor:4"
+    assert parse_qs(urlparse(page.url).query)["method"] == ["taylor:4"]
+
+
+def test_sliders_and_dragging_the_bob_set_the_inputs(page, server):
+    page.goto(server + "/?length=3.5&amplitude=30&unit=deg&step=1e-3&t_max=20&paused=1&t=0")
+    wait_for_period(page, ellipk_period(3.5, math.pi / 6))
+    # The length slider moves log10(l): 0 is 1 m.
+    page.evaluate("(() => { const s = document.getElementById('length-slider'); s.value = '0'; s.dispatchEvent(new Event('input')); })()")
+    assert page.input_value("#length") == "1"
+    wait_for_period(page, ellipk_period(1, math.pi / 6))
+    # Drag the bob (at 30 deg at t = 0) to 60 deg: the amplitude follows.
+    box = page.locator("#canvas").bounding_box()
+    w, h = box["width"], box["width"] * 340 / 420
+    px, py, r = box["x"] + w / 2, box["y"] + h / 2, h / 2 - 26
+    a0, a1 = math.radians(30), math.radians(60)
+    page.mouse.move(px + r * math.sin(a0), py + r * math.cos(a0))
+    page.mouse.down()
+    page.mouse.move(px + r * math.sin(a1), py + r * math.cos(a1), steps=5)
+    page.mouse.up()
+    page.wait_for_function("Math.abs(Number(document.getElementById('amplitude').value) - 60) < 1")
+    shown = float(page.input_value("#amplitude"))
+    wait_for_period(page, ellipk_period(1, math.radians(shown)))
+    assert parse_qs(urlparse(page.url).query)["amplitude"] == [page.input_value("#amplitude")]
+
+
+def test_api_docs_work_offline(page, server):
+    page.goto(server + "/api/docs")
+    page.wait_for_selector(".swagger-ui .opblock", timeout=30_000)
+    assert page.locator(".opblock-summary-path", has_text="/api/simulate").count() == 1
+    assert page.outside == [] and page.errors == []

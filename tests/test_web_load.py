@@ -60,3 +60,43 @@ def test_200_concurrent_requests_all_answered_correctly(server):
         assert body["theta"][0] == pytest.approx(math.radians(int(q["amplitude"][:-3])), rel=1e-15)
     # The server is still there afterwards.
     assert httpx.get(server + "/api/config", timeout=10).status_code == 200
+
+
+async def page_while_busy(base: str, n_heavy: int) -> tuple[list[httpx.Response], dict[str, tuple[int, float]], int]:
+    """Fire ``n_heavy`` simulations with h = 1e-5, then ask for the page, config and a period.
+
+    Returns the heavy answers, each light answer's status and seconds, and how many heavy
+    requests had finished when the last light one answered.
+    """
+    limits = httpx.Limits(max_connections=n_heavy + 10, max_keepalive_connections=n_heavy + 10)
+    heavy_q = {"length": "1", "amplitude": "30deg", "step": "1e-5", "t_max": "5"}
+    done = 0
+
+    async with httpx.AsyncClient(base_url=base, limits=limits, timeout=httpx.Timeout(300.0)) as client:
+        async def heavy() -> httpx.Response:
+            nonlocal done
+            r = await client.get("/api/simulate", params=heavy_q)
+            done += 1
+            return r
+
+        tasks = [asyncio.create_task(heavy()) for _ in range(n_heavy)]
+        await asyncio.sleep(1.0)  # all sent, the first ones computing
+        light = {}
+        for path in ("/", "/api/config", "/api/period?length=1&amplitude=30deg"):
+            t0 = asyncio.get_running_loop().time()
+            r = await client.get(path)
+            light[path] = (r.status_code, asyncio.get_running_loop().time() - t0)
+        done_then = done
+        answers = await asyncio.wait_for(asyncio.gather(*tasks), timeout=600)
+    return answers, light, done_then
+
+
+def test_the_page_answers_while_heavy_simulations_are_in_flight(server):
+    # 40 simulations of 500 000 steps each wait for the simulation slots; the page, the
+    # config and an exact period are answered meanwhile (times: benchmarks/bench_web_load.py).
+    answers, light, done_then = asyncio.run(page_while_busy(server, 40))
+    for path, (status, seconds) in light.items():
+        assert status == 200, path
+        assert seconds < 5.0, (path, seconds)  # generous: a stalled server took 13 s
+    assert done_then < 40  # the heavy ones were still in flight
+    assert all(r.status_code == 200 and r.json()["n_steps"] == 500_000 for r in answers)

@@ -1,10 +1,63 @@
 """``pendulab serve``: the local web explorer."""
 from __future__ import annotations
 
+import contextlib
+import errno
+import socket
+
 import click
 
 from ..inputs import shown
 from ._common import integer
+
+#: Ports tried after a busy one, to suggest a free one.
+_PORTS_TRIED = 50
+
+
+def _bind(host: str, port: int) -> None:
+    """Bind and release ``host:port`` once, so a failure is one clear line, not a traceback."""
+    infos = socket.getaddrinfo(host, port, type=socket.SOCK_STREAM)
+    with socket.socket(infos[0][0], socket.SOCK_STREAM) as s:
+        s.setsockopt(socket.SOL_SOCKET, socket.SO_REUSEADDR, 1)
+        s.bind(infos[0][4])
+
+
+def free_port_after(host: str, port: int) -> int | None:
+    """The first port after ``port`` that ``host`` can listen on, or None within 50 tries."""
+    for p in range(port + 1, min(65536, port + 1 + _PORTS_TRIED)):
+        try:
+            _bind(host, p)
+        except OSError:
+            continue
+        return p
+    return None
+
+
+def lan_addresses() -> list[str]:
+    """This machine's IPv4 addresses other than loopback, as others on the network reach it.
+
+    The address of the interface that routes outward (a UDP socket "connected" to a
+    private address: nothing is sent), then those the host name resolves to.
+    """
+    found: list[str] = []
+    with contextlib.suppress(OSError), socket.socket(socket.AF_INET, socket.SOCK_DGRAM) as s:
+        s.connect(("10.254.254.254", 9))
+        found.append(s.getsockname()[0])
+    with contextlib.suppress(OSError):
+        found += socket.gethostbyname_ex(socket.gethostname())[2]
+    out: list[str] = []
+    for a in found:
+        if not a.startswith("127.") and a != "0.0.0.0" and a not in out:
+            out.append(a)
+    return out
+
+
+def urls(host: str, port: int) -> list[str]:
+    """The addresses to open the explorer at: for ``0.0.0.0``/``::``, this machine's LAN addresses."""
+    if host in ("0.0.0.0", "::", ""):
+        return [f"http://{a}:{port}/" for a in lan_addresses()] + [f"http://127.0.0.1:{port}/"]
+    shown = f"[{host}]" if ":" in host else host
+    return [f"http://{shown}:{port}/"]
 
 
 @click.command()
@@ -13,30 +66,36 @@ from ._common import integer
               help="Address to bind; the default serves this computer only (0.0.0.0: the whole network).")
 def serve(port: int, host: str) -> None:
     """Start the web explorer: simulate, animate and plot the pendulum in the browser."""
-    import socket
-
     from .._extras import require
 
     for package in ("fastapi", "uvicorn", "plotly"):
         require(package, "pendulab serve")
 
-    # Bind once here so a busy port or an unknown host is one clear line, not a uvicorn traceback.
     try:
-        infos = socket.getaddrinfo(host, port, type=socket.SOCK_STREAM)
-        with socket.socket(infos[0][0], socket.SOCK_STREAM) as s:
-            s.setsockopt(socket.SOL_SOCKET, socket.SO_REUSEADDR, 1)
-            s.bind(infos[0][4])
+        _bind(host, port)
     except (OSError, ValueError, UnicodeError) as exc:  # busy port, unknown host, a host that is no name
         reason = exc.strerror if isinstance(exc, OSError) and exc.strerror else "not a host name or address"
+        if isinstance(exc, OSError) and exc.errno == errno.EADDRINUSE:
+            free = free_port_after(host, port)
+            reason += f"; port {free} is free: pendulab serve --port {free}" if free else ""
         raise click.BadParameter(f"cannot listen on {shown(host)}:{port}: {reason}", param_hint="--host/--port") from None
+
+    import threading
 
     import uvicorn
 
     from .._warm import warm_kernels
     from ..web import create_app
+    from ..web.api import warm
 
-    warm_kernels()  # the first request finds the kernels compiled
-
-    where = f"[{host}]" if ":" in host else host
-    click.echo(f"pendulab explorer: http://{where}:{port}/   (Ctrl+C to stop)", err=True)
+    warm_kernels()  # the library's kernels compiled (or loaded) while the server starts
+    # and the explorer's own (web/_view.py), through one tiny request.
+    threading.Thread(target=warm, name="pendulab-warm-web", daemon=True).start()
+    where = urls(host, port)
+    if len(where) == 1:
+        click.echo(f"pendulab explorer: {where[0]}   (Ctrl+C to stop)", err=True)
+    else:
+        click.echo("pendulab explorer, open one of these (Ctrl+C to stop):", err=True)
+        for u in where:
+            click.echo(f"  {u}", err=True)
     uvicorn.run(create_app(), host=host, port=port, log_level="warning")

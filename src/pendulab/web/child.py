@@ -19,8 +19,14 @@ def free_port() -> int:
         return s.getsockname()[1]
 
 
+class Served(str):
+    """``http://127.0.0.1:N``, with the server process's ``pid`` (to read its memory)."""
+
+    pid: int
+
+
 @contextlib.contextmanager
-def serve_in_child(timeout: float = 60.0) -> Iterator[str]:
+def serve_in_child(timeout: float = 60.0) -> Iterator[Served]:
     """Start the real ``pendulab serve --port N``; yield ``http://127.0.0.1:N``; stop it.
 
     Waits until ``/api/config`` answers. Raises ``RuntimeError`` with the server's
@@ -44,7 +50,9 @@ def serve_in_child(timeout: float = 60.0) -> Iterator[str]:
                     log.seek(0)
                     raise RuntimeError(f"pendulab serve did not start: {log.read().strip() or 'timeout'}")
                 time.sleep(0.2)
-            yield base
+            served = Served(base)
+            served.pid = proc.pid
+            yield served
         finally:
             proc.terminate()
             try:
