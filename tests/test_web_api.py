@@ -503,3 +503,12 @@ def test_serve_suggests_a_free_port_and_lists_lan_addresses(capsys, monkeypatch)
     monkeypatch.setattr(serve_cmd, "lan_addresses", lambda: ["192.168.1.20", "10.0.0.5"])
     assert serve_cmd.urls("0.0.0.0", 8000) == ["http://192.168.1.20:8000/", "http://10.0.0.5:8000/", "http://127.0.0.1:8000/"]
     assert serve_cmd.urls("127.0.0.1", 8000) == ["http://127.0.0.1:8000/"]
+
+
+def test_a_run_shorter_than_a_period_is_drawn(client):
+    # l = 1e6 m: T ~ 2000 s, t_max = 20 s holds a hundredth of a swing; T = 1e150 s as well.
+    for length in ("1e6", "1e300"):
+        body = client.get("/api/simulate", params={"length": length, "amplitude": "1", "step": "1e-3", "t_max": "20"}).json()
+        assert body["n_steps"] == 20_000 and 2 <= len(body["frames"]["t"]) <= api.FRAME_POINTS
+        assert 2 <= len(body["phase"]["theta"]) <= api.PHASE_POINTS and None not in body["phase"]["theta"]
+        assert body["frames"]["t"][-1] == pytest.approx(20.0)

@@ -255,7 +255,8 @@ def phase_samples(n: int, steps_per_period: float) -> tuple[np.ndarray, int, int
     taken at evenly spread times, first and last included, so that a drift of the orbit
     still shows. Returns ``(steps, stride, windows)``.
     """
-    k = max(1, int(steps_per_period // PHASE_PER_PERIOD))
+    # A run shorter than a period (T = 1e150 s) has its points spread over the run instead.
+    k = max(1, int(min(steps_per_period, 2.0 * n) // PHASE_PER_PERIOD))
     if n // k + 1 <= PHASE_POINTS:
         return _uniform(n, k), k, 1
     span = min(n, int(math.ceil(1.05 * steps_per_period)))
@@ -272,8 +273,8 @@ def frame_samples(n: int, steps_per_period: float, per_period: int = 16, most: i
     The animation interpolates between them; the global error is evaluated at 64 a period.
     """
     most = FRAME_POINTS if most is None else most
-    k = max(1, int(steps_per_period // per_period), math.ceil(n / (most - 1)))
-    return _uniform(n, k)
+    k = max(1, int(min(steps_per_period, 2.0 * n) // per_period), math.ceil(n / (most - 1)))
+    return _uniform(n, min(k, n))
 
 
 def _minmax(bins: np.ndarray, values: np.ndarray, nb: int) -> np.ndarray:
@@ -330,7 +331,7 @@ def _gapped(values: np.ndarray, idx: np.ndarray, stride: int) -> list:
     out = _finite_list(values)
     if len(idx) < 2:
         return out
-    breaks = np.flatnonzero(np.diff(idx) != stride) + 1
+    breaks = np.flatnonzero(np.diff(idx) > stride) + 1  # the last step may follow closer
     for b in breaks[::-1].tolist():
         out.insert(b, None)
     return out
