@@ -113,3 +113,14 @@ def test_html_shows_every_field_and_floats_in_full():
     # The result carries the decision; its words come from the catalogues (pendulab.words).
     assert "curvature_positive" in page and html.escape(p2.justification) not in page
     assert "<details><summary>NewtonResult</summary>" in page
+
+
+def test_a_sweep_is_a_table():
+    from pendulab.sweep import sweep
+
+    r = sweep(np.radians([30.0, 60.0]), [1e-3], ["taylor2"])
+    assert not r["cubic"].flags.writeable
+    df = r.to_frame()
+    assert list(df.columns) == list(r.columns) and len(df) == len(r) == 2
+    assert df["cubic_error"].tolist() == r["cubic_error"].tolist()
+    assert r == r and r != sweep(np.radians([30.0, 60.0]), [1e-3], ["taylor2"])

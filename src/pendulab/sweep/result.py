@@ -12,13 +12,14 @@ import numpy as np
 from .._atomic import atomic_path, check_writable
 from ..errors import InputError
 from ..methods import Status
+from ..results import Result
 
 #: Status of each pendulum, as :func:`pendulab._kernels.first_return` reports it.
 STATUS = tuple(s.name.lower() for s in Status)
 
 
-@dataclass(frozen=True)
-class SweepResult:
+@dataclass(frozen=True, eq=False)
+class SweepResult(Result):
     """One row per (method, step, pendulum): the simulated period and its errors.
 
     Columns (all arrays of the same length): ``method`` (str), ``order``, ``step``,
@@ -29,6 +30,9 @@ class SweepResult:
     """
 
     columns: dict[str, np.ndarray]
+
+    def _columns(self) -> dict[str, np.ndarray]:
+        return self.columns
 
     def __len__(self) -> int:
         return len(self.columns["amplitude"])
