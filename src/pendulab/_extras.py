@@ -19,6 +19,8 @@ EXTRA_OF = {
     "fastapi": "web",
     "uvicorn": "web",
     "plotly": "web",
+    "orjson": "web",
+    "swagger_ui_bundle": "web",
     "pyarrow": "sweep",
     "dask": "dask",
     "distributed": "dask",
