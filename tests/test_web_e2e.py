@@ -371,6 +371,13 @@ def test_sliders_and_dragging_the_bob_set_the_inputs(page, server):
     page.evaluate("(() => { const s = document.getElementById('length-slider'); s.value = '0'; s.dispatchEvent(new Event('input')); })()")
     assert page.input_value("#length") == "1"
     wait_for_period(page, ellipk_period(1, math.pi / 6))
+    # So does g's (log10 too), and a preset button moves the slider.
+    page.evaluate("(() => { const s = document.getElementById('g-slider'); s.value = '1'; s.dispatchEvent(new Event('input')); })()")
+    assert page.input_value("#g") == "10"
+    wait_for_period(page, ellipk_period(1, math.pi / 6, 10))
+    page.get_by_role("button", name="Moon").click()
+    assert page.evaluate("Number(document.getElementById('g-slider').value)") == pytest.approx(math.log10(1.62), abs=0.01)
+    wait_for_period(page, ellipk_period(1, math.pi / 6, 1.62))
     # Drag the bob (at 30 deg at t = 0) to 60 deg: the amplitude follows.
     box = page.locator("#canvas").bounding_box()
     w, h = box["width"], box["width"] * 340 / 420
@@ -382,7 +389,7 @@ def test_sliders_and_dragging_the_bob_set_the_inputs(page, server):
     page.mouse.up()
     page.wait_for_function("Math.abs(Number(document.getElementById('amplitude').value) - 60) < 1")
     shown = float(page.input_value("#amplitude"))
-    wait_for_period(page, ellipk_period(1, math.radians(shown)))
+    wait_for_period(page, ellipk_period(1, math.radians(shown), 1.62))
     assert parse_qs(urlparse(page.url).query)["amplitude"] == [page.input_value("#amplitude")]
 
 

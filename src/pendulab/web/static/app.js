@@ -12,8 +12,8 @@ const SPEEDS = [0.1, 0.25, 0.5, 1, 2, 4];
 const FONT = { family: "system-ui, -apple-system, Segoe UI, Roboto, DejaVu Sans, sans-serif", size: 12, color: "#1d2330" };
 const COLORS = { a: "#2f6fdb", b: "#e07a1f", p: "#d1495b", bracket: "#8a94a6", linear: "#e69f00", cubic: "#009e73", exact: "#1d2330", cursor: "#d1495b" };
 const PLAIN_NUMBER = /^[+-]?(\d+\.?\d*|\.\d+)([eE][+-]?\d+)?$/;
-// Sliders beside the number fields: [min, max] of the slider, and whether it moves log10 of the value.
-const SLIDERS = { length: { log: true }, step: { log: true }, t_max: { log: true }, amplitude: { log: false } };
+// Sliders beside the number fields: whether each moves log10 of the value (range in index.html).
+const SLIDERS = { length: { log: true }, g: { log: true }, step: { log: true }, t_max: { log: true }, amplitude: { log: false } };
 
 const $ = (id) => document.getElementById(id);
 let config = null;
@@ -317,7 +317,7 @@ function renderTheta() {
 function renderPhase() {
   const s = sims.a;
   const a = s.input.amplitude;
-  const orbits = (x) => (x.phase.orbits > 1 ? ` (${x.phase.orbits} whole orbits from 0 to ${short(x.phase.t_last)} s)` : "");
+  const orbits = (x) => (x.phase.orbits > 1 ? ` (${x.phase.orbits} stretches of one period, 0 to ${short(x.phase.t_last)} s)` : "");
   const traces = [
     { x: s.phase.theta, y: s.phase.omega, mode: "lines", connectgaps: false, line: { color: COLORS.a, width: 1.6 },
       name: label(s) + orbits(s), hovertemplate: "θ = %{x:.5f} rad<br>θ′ = %{y:.5f} rad/s<extra></extra>" },
@@ -332,7 +332,7 @@ function renderPhase() {
   traces.push({ x: [st ? st.theta : null], y: [st ? st.omega : null], mode: "markers", marker: { color: COLORS.cursor, size: 9 },
     name: "now", showlegend: false, hoverinfo: "skip" });
   anim.phaseCursor = traces.length - 1;
-  const title = s.phase.orbits > 1 ? `Phase portrait: ${s.phase.orbits} orbits spread over the run` : "Phase portrait (θ, θ′)";
+  const title = s.phase.orbits > 1 ? `Phase portrait: ${s.phase.orbits} one-period stretches of the run` : "Phase portrait (θ, θ′)";
   Plotly.react("plot-phase", traces, layout(title, "θ (rad)", "θ′ (rad/s)", {
     annotations: [{ x: a, y: 0, text: "P", showarrow: true, arrowhead: 0, ax: 22, ay: -22, font: { color: COLORS.p } }],
     ...twoMethods(traces.slice(0, -2)),
@@ -653,7 +653,7 @@ async function init() {
     const b = document.createElement("button");
     b.type = "button"; b.dataset.g = g; b.textContent = name[0].toUpperCase() + name.slice(1);
     b.title = `g = ${g} m/s²`;
-    b.addEventListener("click", () => { $("g").value = String(g); schedule(0); });
+    b.addEventListener("click", () => { $("g").value = String(g); syncSlider("g"); schedule(0); });
     $("g-presets").append(b);
   }
   readURL();
