@@ -419,3 +419,50 @@ def test_problem4_601_points_beside(built):
     assert "601 points" in text
     for c in alt.fit.coefficients:
         assert f"{c:.10g}".replace("-", "-") in text
+
+
+@pytest.mark.parametrize("lang", ["en", "pt"])
+def test_section0_sentences_are_true(tmp_path, lang):
+    """Each claim of section 0 against the data it names, computed here independently."""
+    import re
+
+    import numpy as np
+    from flint import arb, ctx
+
+    import plain_pendulum as plain
+    from pendulab.period import period_ball
+    from pendulab.report.builder import section_data
+
+    doc = section_data(EXAMPLE, lang, tmp_path, only=["exact period"])
+    text, limit_text = doc.entry("agm.text"), doc.entry("agm.limit.text")
+    length, alpha = 2.0800838231, 4 * math.pi / 5
+
+    def nearest(l_, a):  # the true period of the doubles (elliptic K, not the AGM), rounded once
+        with mpmath.workdps(60):
+            t = 4 * mpmath.sqrt(mpmath.mpf(l_) / mpmath.mpf(9.80665)) * mpmath.ellipk(mpmath.sin(mpmath.mpf(a) / 2) ** 2)
+            return mpmath.libmp.to_float(t._mpf_, rnd="n")
+
+    # "T^ = t7 s, n ulp from tc s, the correctly rounded period of the same doubles"
+    t7, tc = plain.agm7_period(length), nearest(length, alpha)
+    ulps = round(abs(t7 - tc) / math.ulp(tc))
+    connective = "from" if lang == "en" else "de"
+    assert f"$hat(T) = {t7:.16g}$ s, {'' if lang == 'en' else 'a '}{ulps} ulp {connective} {tc:.16g} s" in text
+    # "the interval's two ends round to the same 20 digits": the ball contains mpmath's period
+    # and is narrower than the rounding interval's half-width around the printed digits.
+    digits = re.search(r"\$T = ([0-9.]+)\$ s", text).group(1)
+    ball = period_ball("2.0800838231", "4pi/5", prec=int(20 * 3.33) + 64)
+    old = ctx.prec
+    ctx.prec = 256
+    try:
+        half = arb(10) ** (math.floor(math.log10(float(digits))) - 19) / 2
+        assert (ball - arb(digits)).abs_upper() < half  # both ends round to the printed digits
+    finally:
+        ctx.prec = old
+    # "by at most N ulp" up to the truncation limit: T^ (the plain loop) against the
+    # correctly rounded period (elliptic K) on random amplitudes, dense near the limit.
+    limit_ulps = int(re.search(r"(\d+) ulp", limit_text).group(1))
+    limit = float(re.search(r"alpha <= ([0-9.]+)\$", limit_text).group(1))
+    rng = np.random.default_rng(5)
+    alphas = [*rng.uniform(0, 3.1, 40), *(math.pi - np.exp(rng.uniform(np.log(math.pi - limit), np.log(1e-3), 40)))]
+    worst = max(abs(plain.agm7_period(1.0, a) - nearest(1.0, a)) / math.ulp(nearest(1.0, a)) for a in alphas)
+    assert worst <= limit_ulps

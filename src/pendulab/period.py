@@ -31,6 +31,11 @@ from .exact import Exact
 _MAX_ITERATIONS = 64
 # Stop when a - b <= 4 eps a: the next step would change v by less than eps^2.
 _RTOL = 4 * sys.float_info.epsilon
+#: How far (in ulps) the coursework's 7-iteration ``T^`` of (8), the loop (7) in double
+#: precision, is at most from the correctly rounded period for every amplitude up to
+#: :func:`fixed_iterations_limit`: measured, not proved (``benchmarks/accuracy_claims.py``
+#: against mpmath's K; checked on random amplitudes by the tests).
+FIXED_ITERATIONS_ULPS = 4
 
 
 def _is_scalar(x: Any) -> bool:

@@ -42,8 +42,8 @@ def agm(doc: Doc, students: Sequence[int]) -> None:
     from ..group import group_length
 
     doc.listing(period.agm_mean, period.agm_period, period.agm_iterations, period.fixed_iterations_error,
-                period.fixed_iterations_limit, period.period_mp, period.period_digits,
-                *_c("cases", "G_TEXT", "G", "G_EXACT", "PROBLEM3_AMPLITUDE"))
+                period.fixed_iterations_limit, period.period_mp, period.period_digits, period.period_ball,
+                *_c("period", "FIXED_ITERATIONS_ULPS"), *_c("cases", "G_TEXT", "G", "G_EXACT", "PROBLEM3_AMPLITUDE"))
     group = group_length(students)
     length = group.length
     alpha = float(PROBLEM3_AMPLITUDE)
@@ -64,7 +64,8 @@ def agm(doc: Doc, students: Sequence[int]) -> None:
         "agm.t7": num(t7, 16),
         "agm.tc": num(tc, 16),
         "agm.mp": digits,
-        "agm.diff": sci(abs(t7 - tc), 2) if t7 != tc else "0",
+        "agm.diff": f"{round(abs(t7 - tc) / math.ulp(tc))} ulp",
+        "agm.ulps7": integer(period.FIXED_ITERATIONS_ULPS),
         "agm.iter": integer(period.agm_iterations(alpha)),
         "agm.limit": num(limit, 16),
         "agm.gap": sci(math.pi - limit, 2),
