@@ -62,6 +62,26 @@ def test_simulate_figures(cli, tmp_path, ext, magic):
     assert sorted(p.name for p in tmp_path.iterdir()) == sorted([plot.name, phase.name])  # no temp files
 
 
+def test_figures_leave_matplotlib_global_state_alone(cli, tmp_path):
+    # The CLI draws on a Figure object: no backend switch, no rcParams edit, no pyplot figure.
+    code = (
+        "import matplotlib, sys\n"
+        "matplotlib.use('svg')\n"
+        "rc = dict(matplotlib.rcParams)\n"
+        "from pendulab.cli import main\n"
+        "try:\n"
+        f"    main(['simulate', '--plot', {str(tmp_path / 'a.png')!r}, '--phase', {str(tmp_path / 'b.pdf')!r}])\n"
+        "except SystemExit as e:\n"
+        "    assert not e.code, e.code\n"
+        "import matplotlib.pyplot as plt\n"
+        "print(matplotlib.get_backend(), dict(matplotlib.rcParams) == rc, plt.get_fignums())\n"
+    )
+    out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, timeout=120, env=os.environ)
+    assert out.returncode == 0, out.stderr
+    assert out.stdout.splitlines()[-1].split() == ["svg", "True", "[]"]
+    assert (tmp_path / "a.png").read_bytes().startswith(b"\x89PNG")
+
+
 def test_failed_figure_keeps_the_old_file(cli, tmp_path):
     old = tmp_path / "fig.png"
     old.write_bytes(b"old")
