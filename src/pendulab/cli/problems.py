@@ -7,6 +7,7 @@ import click
 
 from .. import cases, inputs
 from ..errors import InputError
+from ..words import sentence
 from ._common import ANGLE, FIGURE, POSITIVE, Parsed, check_plot_path, emit_json, fmt, g_option, json_option
 
 _M = {"m": Fraction(1), "cm": Fraction(1, 100), "mm": Fraction(1, 1000)}
@@ -95,11 +96,13 @@ def newton(length, target, x0, g, as_json):
 
     r = problem2(float(length), float(target), x0, float(g))
     run, chk = r.run, r.interval
+    x0_rule = sentence("p2.x0_rule") if r.x0_from_fourier else "given"
+    justification = sentence("p2.justification." + ("positive" if r.curvature_positive else "negative"))
     if as_json:
         emit_json({
             "length": r.equation.length, "target": r.equation.target, "g": r.equation.g, "p": r.equation.p,
             "alpha": r.alpha, "alpha_degrees": r.alpha_degrees, "closed_form": r.closed_form,
-            "x0": r.x0, "x0_rule": r.x0_rule, "x0_in_interval": r.x0_in_interval,
+            "x0": r.x0, "x0_rule": x0_rule, "x0_in_interval": r.x0_in_interval,
             "iterates": list(run.iterates), "values": list(run.values), "corrections": list(run.corrections),
             "criterion": run.criterion, "stop_reason": run.stop_reason,
             "q": list(run.q), "q_rounding": list(run.q_rounding), "k_max": run.k_max, "q_kmax": run.q_kmax,
@@ -108,7 +111,7 @@ def newton(length, target, x0, g, as_json):
             "interval": [chk.a, chk.b], "interval_degrees": list(r.interval_degrees),
             "interval_conditions": [{"name": c.name, "holds": c.holds, "detail": c.detail, **c.values}
                                     for c in chk.conditions],
-            "justification": r.justification,
+            "justification": justification,
         })
         return
     e = r.equation
@@ -117,7 +120,7 @@ def newton(length, target, x0, g, as_json):
     click.echo(f"interval [a, b] = [{a:g}, {b:g}] deg = [{chk.a!r}, {chk.b!r}] rad:")
     for c in chk.conditions:
         click.echo(f"  [{'ok' if c.holds else 'FAILS'}] {c.name}: {c.detail}")
-    click.echo(f"x0 = {r.x0!r} ({r.x0_rule}); {run.criterion}")
+    click.echo(f"x0 = {r.x0!r} ({x0_rule}); {run.criterion}")
     click.echo(f"{'k':>3} {'x_k (rad)':>22} {'f(x_k)':>12} {'q_k':>12} {'rounding of q_k':>16}")
     for k, x in enumerate(run.iterates):
         q = run.q[k] if k < len(run.q) else None
@@ -157,6 +160,8 @@ def fit(length, amplitude, step, t_max, decimals, plot, g, as_json):
         from ._common import save_plot
 
         save_plot(lambda ax: plots.fit(ax, r), plot)
+    answer = sentence("p4.answer." + ("yes" if r.below_tolerance else "no"), deviation=r.fit.max_deviation,
+                      at=r.fit.argmax_deviation, tolerance=r.tolerance, exact=r.exact_deviation)
     if as_json:
         emit_json({
             "length": r.length, "amplitude": r.amplitude, "step": r.step, "period": r.period,
@@ -172,7 +177,7 @@ def fit(length, amplitude, step, t_max, decimals, plot, g, as_json):
             "coefficient_shift": f.coefficient_shift,
             "ssd": f.ssd, "max_deviation": f.max_deviation, "max_deviation_at": f.argmax_deviation,
             "tolerance": r.tolerance, "below_tolerance": r.below_tolerance,
-            "exact_deviation": r.exact_deviation, "taylor_error": r.taylor_error, "answer": r.answer,
+            "exact_deviation": r.exact_deviation, "taylor_error": r.taylor_error, "answer": answer,
         })
         return
     click.echo(f"l = {r.length!r}, alpha = {r.amplitude!r}, h = {r.step!r}; T (8) = {r.period!r}; "
@@ -196,7 +201,7 @@ def fit(length, amplitude, step, t_max, decimals, plot, g, as_json):
     click.echo(f"rounding moves the coefficients by at most {f.coefficient_shift:.3e} (vs numpy.linalg.lstsq)")
     click.echo(f"sum of squared deviations = {f.ssd:.6e}")
     click.echo(f"max |z1_j - phi(t_j)| = {f.max_deviation:.6e} at t = {f.argmax_deviation:g}")
-    click.echo(r.answer)
+    click.echo(answer)
 
 
 # --------------------------------------------------------------------------- quadrature
@@ -215,6 +220,7 @@ def quadrature(length, amplitude, ns, substitution, g, as_json):
     from ..problems import problem5
 
     r = problem5(float(length), float(amplitude), ns, substitution, float(g))
+    answer_5a, rate_text = sentence("p5.answer_5a"), sentence("p5.rate")
     if as_json:
         rows = []
         for row in r.rows:
@@ -225,7 +231,7 @@ def quadrature(length, amplitude, ns, substitution, g, as_json):
             rows.append(d)
         emit_json({"length": r.length, "amplitude": r.amplitude, "g": r.g, "exact": r.exact,
                    "single": r.single, "composite10": r.composite10, "rows": rows,
-                   "answer_5a": r.answer_5a, "rate_explanation": r.rate_explanation})
+                   "answer_5a": answer_5a, "rate_explanation": rate_text})
         return
     click.echo(f"l = {r.length!r}, alpha = {r.amplitude!r}; exact T (8) = {r.exact!r} s")
     head = f"{'n':>10} {'T ~ S_n':>20} {'|error|':>11} {'rate':>6}"
@@ -238,5 +244,5 @@ def quadrature(length, amplitude, ns, substitution, g, as_json):
         if substitution:
             line += f" {row.substitution_period:>20.15g} {row.substitution_error:>11.3e}"
         click.echo(line)
-    click.echo(f"5(a): {r.answer_5a}")
-    click.echo(r.rate_explanation)
+    click.echo(f"5(a): {answer_5a}")
+    click.echo(rate_text)
