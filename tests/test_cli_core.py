@@ -210,3 +210,63 @@ def test_period_needs_neither_numpy_nor_numba():
     res = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, env=os.environ)
     assert res.returncode == 0, res.stderr
     assert "6.21265033491832 s" in res.stdout
+
+
+def _near_pi_texts():
+    """Amplitudes within 10^-60 .. 10^-1 of pi, exactly below or at/above it: as multiples
+    of pi (``0.99..9pi``) and as radians (pi's decimal expansion cut, or cut and rounded up)."""
+    from hypothesis import strategies as st
+
+    with mpmath.workdps(120):
+        pi_text = mpmath.nstr(mpmath.pi, 110, strip_zeros=False)  # 3.14159... (110 digits, rounded)
+    pi_cut = pi_text[:-5]  # the first 100 decimals, cut: below pi (pi is irrational)
+
+    def multiple(k, d, above):
+        text = "0." + "9" * (k - 1) + str(d)  # 1 - (10 - d) 10^-k, exactly below 1
+        return ("1." + "0" * (k - 1) + str(d) if above else text) + "pi", not above
+
+    def radians(k, above):
+        cut = pi_cut[: 2 + k]  # pi cut after k decimals: below pi
+        if above:  # the next decimal up: above pi
+            cut = str(mpmath.mpf(cut) + mpmath.mpf(10) ** -k) if k < 15 else cut[:-1] + str(int(cut[-1]) + 1)
+        return cut, not above
+
+    return st.one_of(
+        st.builds(multiple, st.integers(1, 60), st.integers(1, 9), st.booleans()),
+        st.builds(radians, st.integers(1, 60).filter(lambda k: pi_cut[1 + k] != "9"), st.booleans()),  # 64 characters at most
+    )
+
+
+def test_period_takes_the_amplitude_exactly_near_pi(cli):
+    # The range check runs on the exact amplitude: below pi by 1e-60 is accepted (its double
+    # may be pi), pi or above is refused; the digits and the correctly rounded double are
+    # those of mpmath's K from the exact input, independent of Arb.
+    from fractions import Fraction
+
+    from hypothesis import given, settings
+
+    @settings(max_examples=40, deadline=None, derandomize=True)
+    @given(_near_pi_texts())
+    def check(case):
+        text, below = case
+        res = cli("period", "-l", "1", "-a", text, "--digits", "5", "--json")
+        if not below:
+            assert_one_line_error(res, "--amplitude", text[:30], "[0, pi)")  # long values are shown cut
+            return
+        assert res.code == 0, res.err
+        data = __import__("json").loads(res.out)
+        with mpmath.workdps(250):
+            if text.endswith("pi"):
+                c = Fraction(text[:-2])
+                kp = mpmath.sinpi(mpmath.mpf(1 - c) / 2)  # cos(c pi/2) = sin((1 - c) pi/2), no cancellation
+            else:
+                kp = mpmath.cos(mpmath.mpf(text) / 2)
+            t = 4 * mpmath.sqrt(1 / mpmath.mpf("9.80665")) * mpmath.ellipk(1 - kp * kp)
+            assert data["period_digits"] == mpmath.nstr(t, 5, strip_zeros=False)
+            assert data["period_exact"] == mpmath.libmp.to_float(t._mpf_, rnd="n")
+        on_doubles = data["amplitude"] < math.pi
+        assert (data["period"] is None) == (not on_doubles) == ("period_note" in data)
+        if on_doubles:
+            assert data["period"] == agm_period(1.0, data["amplitude"])
+
+    check()

@@ -248,6 +248,26 @@ def angle(name: str, text: object, open_low: bool = False) -> Exact:
     return x
 
 
+def exact_angle(name: str, text: object) -> Exact:
+    """An angle in ``[0, pi)`` decided on the exact value alone, never on its double.
+
+    ``0.9999999999999999999999999pi`` is accepted although its double rounds to pi:
+    for the commands that compute with the exact input (certified digits). A multiple of
+    pi is judged by its rational coefficient, radians by a certified comparison with pi
+    (Arb balls).
+    """
+    from .period import _below_pi
+
+    allowed = "an angle in [0, pi) rad such as 0.785, pi/4, 4pi/5, 45deg or 45°"
+    try:
+        x = angle_value(name, text)
+    except InputError as exc:
+        raise InputError(name, exc.value, allowed + exc.allowed[len(ANGLE_WORDS):]) from None
+    if x.coef < 0 or not _below_pi(x):
+        raise InputError(name, shown(x.text), allowed)
+    return x
+
+
 # --------------------------------------------------------------------------- lists
 def items(name: str, text: object, allowed: str, max_items: int = MAX_ITEMS) -> list[str]:
     """The items of a list separated by commas, spaces or both; no empty item."""

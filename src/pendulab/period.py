@@ -400,6 +400,32 @@ def period_digits(length: Any, amplitude: Any, g: Any = G_EXACT, digits: int = 3
     raise NumericalError(f"the period could not be enclosed to {digits} digits within 2^24 bits")
 
 
+def period_double(length: Any, amplitude: Any, g: Any = G_EXACT) -> float:
+    """The double nearest to the true period of the inputs as written (correctly rounded).
+
+    Unlike :func:`agm_period`, which takes doubles, the inputs are exact (see
+    :func:`period_ball`): ``"0.9999999999999999999999999pi"`` has a period although its
+    double is pi. The ball is narrowed until both its ends round to the same double
+    (``float`` of a fraction rounds correctly, half to even).
+    """
+    from .errors import NumericalError
+
+    _exact_inputs(length, amplitude, g)
+    prec = 128
+    while prec <= 1 << 16:
+        ball = period_ball(length, amplitude, g, prec)
+        if ball.is_finite() and ball > 0:
+            mid, rad = _arb_fraction(ball.mid()), _arb_fraction(ball.rad())
+            try:
+                lo, hi = float(mid - rad), float(mid + rad)
+            except OverflowError:
+                raise NumericalError("the period is beyond the largest double") from None
+            if lo == hi:
+                return lo
+        prec *= 2
+    raise NumericalError("the period could not be rounded to a double within 2^16 bits")  # pragma: no cover
+
+
 def fixed_iterations_error(amplitude: Any, iterations: int = 7, guard: int = 30):
     """Relative truncation error ``v_n / M - 1`` of ``n`` iterations of (7), as an ``mpmath.mpf``.
 

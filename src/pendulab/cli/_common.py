@@ -65,6 +65,8 @@ def output(*extensions: str) -> Parsed:
 
 
 ANGLE = Parsed(lambda s: inputs.angle("amplitude", s), "angle")
+#: An amplitude taken exactly: ``0 <= alpha < pi`` on the exact value (its double may be pi).
+EXACT_ANGLE = Parsed(lambda s: inputs.exact_angle("amplitude", s), "angle")
 POSITIVE = Parsed(lambda s: inputs.positive("value", s), "number")
 FLOAT = Parsed(lambda s: float(inputs.real("value", s)), "number")
 POSITIVE_LIST = Parsed(lambda s: inputs.positive_list("value", s), "list")

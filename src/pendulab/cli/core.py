@@ -6,6 +6,7 @@ import click
 from ..cases import EXAMPLE_GROUP, FIGURE3_STEP, FIGURE3_T_MAX, PROBLEM3_AMPLITUDE, PROBLEM3_STEPS
 from ._common import (
     ANGLE,
+    EXACT_ANGLE,
     FIGURE,
     FLOAT,
     METHOD,
@@ -37,7 +38,8 @@ def _method_option(f):
 
 @click.command()
 @click.option("-l", "--length", type=POSITIVE, required=True, help=_LENGTH_HELP)
-@click.option("-a", "--amplitude", type=ANGLE, required=True, help=_ANGLE_HELP)
+@click.option("-a", "--amplitude", type=EXACT_ANGLE, required=True,
+              help=_ANGLE_HELP + " Taken exactly: 0.9999999999999999999999999pi is below pi.")
 @click.option("--iterations", type=integer(0, 1000), default=None,
               help="Fixed AGM iterations (7: the coursework's T^ of (8)); default: to convergence.")
 @click.option("--digits", type=integer(1, 10000), default=None,
@@ -48,22 +50,36 @@ def period(length, amplitude, iterations, digits, g, as_json):
     """The exact period by the arithmetic-geometric mean, equations (7)-(8).
 
     The digits printed are those of the true period of the inputs as written, correctly
-    rounded and proved by ball arithmetic (Arb); --json gives the double nearest to the
-    period (8) as well.
+    rounded and proved by ball arithmetic (Arb). --json gives as well "period", the double
+    nearest to the period (8) of the inputs' doubles (null, with "period_note", where the
+    amplitude's double is not below pi), and "period_exact", the double nearest to the
+    true period of the inputs as written.
     """
+    import math
+
     from ..exact import Exact
     from ..period import agm_period, period_digits, small_angle_period
 
+    # Where the amplitude is below pi but its double is not, (8) on doubles has no value.
+    on_doubles = float(amplitude) < math.pi
+    note = (f"the amplitude {amplitude.text} is below pi but its nearest double is not: (8) on doubles is "
+            "undefined; period_exact is the period of the amplitude as written")
     # The text needs the certified digits only; the double (8) is computed where it is shown.
     if as_json:
+        from ..period import period_double
+
         data = {
             "length": float(length),
             "amplitude": float(amplitude),
             "g": float(g),
             "iterations": iterations,
-            "period": agm_period(float(length), float(amplitude), float(g), iterations=iterations),
+            "period": agm_period(float(length), float(amplitude), float(g), iterations=iterations)
+            if on_doubles else None,
+            "period_exact": period_double(length, amplitude, g),
             "small_angle_period": small_angle_period(float(length), float(g)),
         }
+        if not on_doubles:
+            data["period_note"] = note
         if digits is not None:
             data["period_digits"] = period_digits(length, amplitude, g, digits)
         emit_json(data)
@@ -73,8 +89,12 @@ def period(length, amplitude, iterations, digits, g, as_json):
     click.echo(f"{'period, AGM (7)-(8)':34}T  = {exact} s")
     click.echo(f"{'small-angle period 2 pi sqrt(l/g)':34}T0 = {period_digits(length, Exact.of(0), g, d)} s")
     if iterations is not None:
-        t = agm_period(float(length), float(amplitude), float(g), iterations=iterations)
-        click.echo(f"{f'(8) after {iterations} iterations, double':34}T^ = {t!r} s")
+        label = f"(8) after {iterations} iterations, double"
+        if on_doubles:
+            t = agm_period(float(length), float(amplitude), float(g), iterations=iterations)
+            click.echo(f"{label:34}T^ = {t!r} s")
+        else:
+            click.echo(f"{label:34}T^ undefined: {note}")
 
 
 @click.command()
