@@ -74,6 +74,26 @@ def test_quadrature_json(cli):
     assert "5(a)" in cli("quadrature", "--n", "1e1,1e2", "--substitution").out
 
 
+@pytest.mark.parametrize("gap", ["1e-6", "1e-9", "1e-12", "1e-15"])
+def test_quadrature_graded_near_pi_against_mpmath(cli, gap):
+    # Equal panels cannot resolve the substituted integrand's peak (width cos(alpha/2)) near
+    # pi; graded panels reach the rounding level at n = 3000. Reference: mpmath's elliptic K
+    # at 60 digits from the amplitude's exact double, independent of rule (11).
+    import mpmath
+
+    alpha = math.pi - float(gap)
+    data = cli("quadrature", "-l", "1", "-a", repr(alpha), "--n", "100,3000", "--graded", "--json").json
+    assert data["graded"] is True
+    with mpmath.workdps(60):
+        kp = mpmath.cos(mpmath.mpf(alpha) / 2)
+        ref = float(4 * mpmath.sqrt(1 / mpmath.mpf(9.80665)) * mpmath.ellipk(1 - kp * kp))
+    assert abs(data["rows"][1]["substitution_period"] / ref - 1) < 4e-15
+    equal = cli("quadrature", "-l", "1", "-a", repr(alpha), "--n", "3000", "--substitution", "--json").json
+    assert abs(equal["rows"][0]["substitution_period"] / ref - 1) > 1e-3  # what --graded is for
+    text = cli("quadrature", "-l", "1", "-a", repr(alpha), "--n", "3000", "--graded").out
+    assert "T ~ S_n (graded)" in text and f"{data['rows'][1]['substitution_period']:.15g}" in text
+
+
 @pytest.mark.parametrize("args, fragment", [
     (("gravity", "--length-error", "-0.3cm"), "--length-error"),
     (("gravity", "--period-error", "-2e-4"), "--period-error"),

@@ -514,6 +514,8 @@ class Problem5(Result):
         ``64 u T^``: an error below it is rounding, not truncation.
     substitution_converged_n : int or None
         The first ``n`` whose substituted error is at the rounding floor.
+    graded : bool
+        The substituted columns use panels graded towards the peak near pi.
     """
 
     length: float
@@ -526,6 +528,7 @@ class Problem5(Result):
     rows: tuple
     rounding_floor: float
     substitution_converged_n: int | None
+    graded: bool = False
 
     @property
     def exact(self) -> float:
@@ -553,12 +556,17 @@ def problem5(
     ns: Sequence[int] = (1,) + tuple(cases.PROBLEM5_N),
     substitution: bool = True,
     g: float = cases.G,
+    graded: bool = False,
 ) -> Problem5:
-    """Problem 5: ``T`` from (1) by rule (11) on 1, 10, ..., 10^5 subintervals, errors against (8)."""
+    """Problem 5: ``T`` from (1) by rule (11) on 1, 10, ..., 10^5 subintervals, errors against (8).
+
+    ``graded`` (with ``substitution``): the substituted integral on panels graded towards
+    its peak, which equal panels cannot resolve near pi (:func:`~pendulab.quadrature.quadrature_period`).
+    """
     from .quadrature import GAUSS3, convergence_table, quadrature_period
 
     exact = agm_period(length, amplitude, g, iterations=7)
-    rows = convergence_table(length, amplitude, ns, exact, g, substitution=substitution)
+    rows = convergence_table(length, amplitude, ns, exact, g, substitution=substitution, graded=graded)
     floor = ROUNDING_FLOOR * abs(exact)
     converged = next((row.n for row in rows if row.substitution_error is not None
                       and row.substitution_error <= floor), None)
@@ -573,4 +581,5 @@ def problem5(
         rows=tuple(rows),
         rounding_floor=floor,
         substitution_converged_n=converged,
+        graded=graded,
     )

@@ -315,8 +315,15 @@ def observed_rates(ns, errors, floor: float) -> list[float | None]:
     return out
 
 
-def convergence_table(length, amplitude, ns, exact: float, g=G, substitution: bool = False) -> list[QuadratureRow]:
-    """The table of 5(d): ``n``, period, ``|error|`` against ``exact`` and observed rate."""
+def convergence_table(length, amplitude, ns, exact: float, g=G, substitution: bool = False,
+                      graded: bool = False) -> list[QuadratureRow]:
+    """The table of 5(d): ``n``, period, ``|error|`` against ``exact`` and observed rate.
+
+    ``graded`` (with ``substitution``): the substituted columns on graded panels
+    (see :func:`quadrature_period`).
+    """
+    if graded and not substitution:
+        raise InputError("graded", graded, "False without the substitution (the graded panels are for its peak)")
     ns = [v.integer("n", n, 1, MAX_N) for n in ns]
     if not ns:
         raise InputError("n", "[]", "at least one number of subintervals")
@@ -328,7 +335,7 @@ def convergence_table(length, amplitude, ns, exact: float, g=G, substitution: bo
     se: list[float | None]
     sr: list[float | None]
     if substitution:
-        sub_periods = [quadrature_period(length, amplitude, n, g, substitution=True) for n in ns]
+        sub_periods = [quadrature_period(length, amplitude, n, g, substitution=True, graded=graded) for n in ns]
         sub_errors = [abs(p - exact) for p in sub_periods]
         sp, se, sr = list(sub_periods), list(sub_errors), observed_rates(ns, sub_errors, floor)
     else:

@@ -213,13 +213,17 @@ def fit(length, amplitude, step, t_max, decimals, plot, g, as_json):
               help="Comma-separated numbers of subintervals.")
 @click.option("--substitution", is_flag=True,
               help="Also integrate after sin(theta/2) = sin(alpha/2) sin(phi), which removes the singularity.")
+@click.option("--graded", is_flag=True,
+              help="The substituted integral (implies --substitution) on panels graded geometrically towards its "
+                   "peak, of width cos(alpha/2): right near pi, where equal panels need n of about 5/cos(alpha/2).")
 @g_option
 @json_option
-def quadrature(length, amplitude, ns, substitution, g, as_json):
+def quadrature(length, amplitude, ns, substitution, graded, g, as_json):
     """Problem 5: the period integral (1) by the composite 3-point Gauss rule (11)."""
     from ..problems import problem5
 
-    r = problem5(float(length), float(amplitude), ns, substitution, float(g))
+    substitution = substitution or graded
+    r = problem5(float(length), float(amplitude), ns, substitution, float(g), graded=graded)
     answer_5a, rate_text = sentence("p5.answer_5a"), sentence("p5.rate")
     if as_json:
         rows = []
@@ -230,13 +234,13 @@ def quadrature(length, amplitude, ns, substitution, g, as_json):
                       "substitution_rate": row.substitution_rate}
             rows.append(d)
         emit_json({"length": r.length, "amplitude": r.amplitude, "g": r.g, "exact": r.exact,
-                   "single": r.single, "composite10": r.composite10, "rows": rows,
+                   "single": r.single, "composite10": r.composite10, "graded": graded, "rows": rows,
                    "answer_5a": answer_5a, "rate_explanation": rate_text})
         return
     click.echo(f"l = {r.length!r}, alpha = {r.amplitude!r}; exact T (8) = {r.exact!r} s")
     head = f"{'n':>10} {'T ~ S_n':>20} {'|error|':>11} {'rate':>6}"
     if substitution:
-        head += f" {'T ~ S_n (subst.)':>20} {'|error|':>11}"
+        head += f" {'T ~ S_n (graded)' if graded else 'T ~ S_n (subst.)':>20} {'|error|':>11}"
     click.echo(head)
     for row in r.rows:
         rate = f"{row.rate:6.3f}" if row.rate is not None else f"{'':>6}"
