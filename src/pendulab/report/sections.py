@@ -338,7 +338,7 @@ INDEX_ONLY = frozenset({
     "uncertainty.gravity_estimate", "lsq.least_squares", "newton.check_interval", "problems.problem2",
     "problems.problem4", "problems.problem5", "quadrature.Rule", "quadrature.convergence_table",
     "motion.jacobi", "motion.quarter_period", "problems.problem1", "uncertainty.round_significant",
-    "lsq.definiteness", "lsq.round_half_up", "period.period_mp", "quadrature.quadrature_period",
+    "lsq.definiteness", "lsq.round_half_up", "period.period_mp", "period.period_ball", "quadrature.quadrature_period",
 })
 
 SECTIONS = [
