@@ -53,3 +53,32 @@ def test_huge_literals_are_refused_quickly(text):
         parse_number("length", text)
     with pytest.raises(InputError):
         parse_angle("amplitude", text + "deg")
+
+
+def _nearest_double_of_pi_times(c: Fraction) -> float:
+    """The double nearest to ``c pi``: mpmath at 700 bits, rounded once by Fraction -> float
+    (correctly rounded, subnormals and overflow included)."""
+    with mpmath.workprec(700):
+        sign, man, exp, _ = (mpmath.mpf(c.numerator) / c.denominator * mpmath.pi)._mpf_
+    if not man:
+        return 0.0
+    try:
+        return (-1.0) ** sign * float(Fraction(int(man)) * Fraction(2) ** int(exp))
+    except OverflowError:
+        return -math.inf if sign else math.inf
+
+
+def test_multiples_of_pi_are_the_nearest_double():
+    """float(Exact) of c pi over the whole double range: normal, subnormal, overflow."""
+    import random
+
+    from pendulab.exact import Exact, _pi_bounds
+
+    for bits in (8, 128, 1000):
+        lo, hi = _pi_bounds(bits)
+        with mpmath.workprec(bits + 64):
+            assert lo <= mpmath.pi * 2**bits <= hi and hi - lo <= 2
+    rng = random.Random(3)
+    for _ in range(2000):
+        c = Fraction(rng.randrange(-10**12, 10**12), rng.randrange(1, 10**12)) * Fraction(10) ** rng.randint(-330, 330)
+        assert float(Exact(c, 1)) == _nearest_double_of_pi_times(c), c

@@ -169,3 +169,26 @@ def test_seven_iterations_within_four_ulps_up_to_the_truncation_limit():
                      * mpmath.ellipk(1 - mpmath.cos(mpmath.mpf(a) / 2) ** 2)) for a in alphas]
     ulps = [abs(x - r) / math.ulp(r) for x, r in zip(t7, ref)]
     assert max(ulps) <= FIXED_ITERATIONS_ULPS == 4
+
+
+@settings(max_examples=300, deadline=None)
+@given(
+    digits=st.integers(1, 60),
+    lead=st.integers(0, 10**60),
+    exponent=st.integers(-80, 80),
+)
+def test_decimal_text_is_mpmath_nstr_layout(digits, lead, exponent):
+    """The proved decimal is printed as mpmath.nstr(x, digits, strip_zeros=False) prints it."""
+    from pendulab.period import _decimal_text
+
+    n = 10 ** (digits - 1) + lead % (9 * 10 ** (digits - 1))
+    with mpmath.workdps(digits + 10):
+        expected = mpmath.nstr(mpmath.mpf(n) * mpmath.mpf(10) ** exponent, digits, strip_zeros=False)
+    assert _decimal_text(n, exponent, digits) == expected
+
+
+@pytest.mark.parametrize("length", ["1e-30", "1e-6", "1e6", "1e40"])
+def test_digits_of_tiny_and_huge_periods(length):
+    ref = ref_period(length, Fraction(1, 3), False, dps=80)
+    with mpmath.workdps(80):
+        assert period_digits(length, "1/3", digits=20) == mpmath.nstr(ref, 20, strip_zeros=False)

@@ -36,7 +36,19 @@ class Exact:
                 return float(self.coef)  # Fraction -> float is correctly rounded
             except OverflowError:  # beyond the largest double
                 return math.inf if self.coef > 0 else -math.inf
-        return float(self.mpf(40))  # mpmath rounds an overflow to +-inf
+        # coef * pi between bounds of pi at growing precision (Ziv): when both ends round
+        # to the same double, so does the exact product (pi is irrational: it resolves).
+        bits = 128
+        while True:
+            lo, hi = _pi_bounds(bits)
+            ends = [self.coef * Fraction(b, 1 << bits) for b in (lo, hi)]
+            try:
+                a, b = float(min(ends)), float(max(ends))
+            except OverflowError:  # beyond the largest double
+                return math.inf if self.coef > 0 else -math.inf
+            if a == b:
+                return a
+            bits *= 2  # pragma: no cover - coef pi within 2^-128 of a rounding boundary
 
     def mpf(self, dps: int):
         """The value as an ``mpmath.mpf`` at ``dps`` significant digits."""
@@ -59,6 +71,30 @@ class Exact:
         if isinstance(value, str):
             return parse_number("value", value)
         return cls(Fraction(value), 0, repr(value))
+
+
+def _pi_bounds(bits: int) -> tuple[int, int]:
+    """Integers ``lo < hi`` with ``lo <= pi 2^bits <= hi``, by Machin's formula
+    ``pi = 16 atan(1/5) - 4 atan(1/239)`` in fixed point with 20 guard bits.
+
+    Each term of the two arctangent series is rounded down (an error below one unit), and
+    the series stop below one unit: at most ``16 (n5 + 1) + 4 (n239 + 1)`` units in all,
+    less than the ``64 (bits + 20)`` allowed for.
+    """
+    one = 1 << (bits + 20)
+
+    def atan_inv(x: int) -> int:  # atan(1/x) = sum (-1)^k / ((2k + 1) x^(2k+1))
+        total, power, k, x2 = 0, one // x, 0, x * x
+        while power:
+            term = power // (2 * k + 1)
+            total += -term if k % 2 else term
+            power //= x2
+            k += 1
+        return total
+
+    v = 16 * atan_inv(5) - 4 * atan_inv(239)
+    err = 64 * (bits + 20)
+    return (v - err) >> 20, ((v + err) >> 20) + 1
 
 
 def parse_number(name: str, text: str) -> Exact:

@@ -365,6 +365,18 @@ def _round_significant(x: Fraction, digits: int) -> tuple[int, int]:
             return n, e
 
 
+def _decimal_text(n: int, e: int, digits: int) -> str:
+    """The decimal ``n 10^e`` (``n`` of ``digits`` digits) as text, in the layout of
+    ``mpmath.nstr(x, digits, strip_zeros=False)``: fixed point while the leading digit's
+    exponent ``p`` satisfies ``min(-(digits // 3), -5) < p < digits``, else ``d.ddde+pp``."""
+    text, p = str(n), e + digits - 1
+    if not min(-(digits // 3), -5) < p < digits:
+        return f"{text[0]}.{text[1:]}e{p:+}"
+    if p < 0:
+        return f"0.{'0' * (-p - 1)}{text}"
+    return f"{text[:p + 1]}.{text[p + 1:]}"
+
+
 def _arb_fraction(x) -> Fraction:
     """The exact value of an exact ``arb`` (a ball's midpoint or radius), as a fraction."""
     man, exp = (int(p) for p in x.man_exp())
@@ -379,8 +391,6 @@ def period_digits(length: Any, amplitude: Any, g: Any = G_EXACT, digits: int = 3
     number in it, the true period included, rounds to that decimal: it is the correctly
     rounded period, and every digit printed is proved. Otherwise the precision is doubled.
     """
-    import mpmath
-
     from .errors import NumericalError
 
     digits = v.integer("digits", digits, 1, 100000)
@@ -393,9 +403,7 @@ def period_digits(length: Any, amplitude: Any, g: Any = G_EXACT, digits: int = 3
             lo = _round_significant(mid - rad, digits)
             hi = _round_significant(mid + rad, digits)
             if lo == hi:
-                n, e = lo
-                with mpmath.workdps(digits + 10):  # only formats the proved decimal
-                    return mpmath.nstr(mpmath.mpf(n) * mpmath.mpf(10) ** e, digits, strip_zeros=False)
+                return _decimal_text(*lo, digits)
         prec *= 2
     raise NumericalError(f"the period could not be enclosed to {digits} digits within 2^24 bits")
 
