@@ -157,24 +157,36 @@ def first_return(method, order, alpha, c, h, n):
     sign change of ``theta'`` from + to - at the top of the swing. Returns
     ``(status, j, z1w, z2w)`` where the window holds ``Z_{j-2} .. Z_{j+2}`` when found.
     The two points before ``Z_i`` are kept in scalars (registers), not in an array.
+    One call of ``step`` and one exit (the loop runs one step past ``j`` for
+    ``Z_{j+2}``): ``step`` is inlined once, which shortens the compilation.
     """
     a2 = b2 = a1 = b1 = 0.0  # Z_{i-2}, Z_{i-1}
     z1, z2 = alpha, 0.0  # Z_i
+    z1w = np.zeros(5)
+    z2w = np.zeros(5)
+    status, j = NO_RETURN, n
     for i in range(n):
         z1n, z2n = step(method, order, z1, z2, h, c)
+        if status == FOUND:  # i = j + 1: Z_{j+2}
+            z1w[4] = z1n
+            z2w[4] = z2n
+            break
         if not abs(z1n) < math.pi:  # also catches NaN
-            return LEFT_OSCILLATION, i, np.zeros(5), np.zeros(5)
+            status, j = LEFT_OSCILLATION, i
+            break
         if z2 > 0.0 and z2n <= 0.0 and z1n > 0.0:  # j = i
             if i < 2:
-                return TOO_EARLY, i, np.zeros(5), np.zeros(5)
+                status, j = TOO_EARLY, i
+                break
             if i + 2 > n:  # Z_{j+2} lies beyond t_max
-                return NO_RETURN, n, np.zeros(5), np.zeros(5)
-            z1nn, z2nn = step(method, order, z1n, z2n, h, c)  # Z_{j+2}
-            return FOUND, i, np.array([a2, a1, z1, z1n, z1nn]), np.array([b2, b1, z2, z2n, z2nn])
+                break
+            status, j = FOUND, i
+            z1w[0], z1w[1], z1w[2], z1w[3] = a2, a1, z1, z1n
+            z2w[0], z2w[1], z2w[2], z2w[3] = b2, b1, z2, z2n
         a2, b2 = a1, b1
         a1, b1 = z1, z2
         z1, z2 = z1n, z2n
-    return NO_RETURN, n, np.zeros(5), np.zeros(5)
+    return status, j, z1w, z2w
 
 
 @njit(cache=True, nogil=True, parallel=True)
