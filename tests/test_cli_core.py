@@ -203,9 +203,11 @@ def test_estimate_flags_rounding_level_and_offers_dense_output(cli):
 
 
 def test_period_needs_neither_numpy_nor_numba():
-    # The scalar path prints mpmath's digits: no numpy, numba or scipy import (start-up time).
-    code = ("import sys; from pendulab.cli import main; main(['period', '-l', '3.5', '-a', '4pi/5', '--json']); "
-            "main(['period', '-l', '3.5', '-a', '4pi/5']); "
+    # The text prints Arb's proved digits without mpmath; --json adds the double by mpmath.
+    # Neither imports numpy, numba or scipy (start-up time).
+    code = ("import sys; from pendulab.cli import main; main(['period', '-l', '3.5', '-a', '4pi/5']); "
+            "assert not {'numpy', 'numba', 'scipy', 'mpmath'} & set(sys.modules), sorted(sys.modules); "
+            "main(['period', '-l', '3.5', '-a', '4pi/5', '--json']); "
             "assert not {'numpy', 'numba', 'scipy'} & set(sys.modules), sorted(sys.modules)")
     res = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, env=os.environ)
     assert res.returncode == 0, res.stderr
