@@ -3,13 +3,14 @@
 Every pendulum of the sweep runs the same streamed period search as
 :func:`pendulab.crossing.estimate_period` (:func:`pendulab._kernels.first_return`: the
 first sign change of ``theta'`` from + to - near ``P = (alpha, 0)``), here for arrays
-of amplitudes and lengths on all cores (:mod:`.kernel`); the window of five points around
+of amplitudes and lengths on all cores (:mod:`.kernel`; for (3) a lock-step kernel whose
+estimates differ from estimate_period's in the last bits, see there); the window of five points around
 the sign change gives the linear and inverse cubic estimates of problem 3(d)
 (:mod:`.chunk`); the rows form a :class:`SweepResult` (:mod:`.result`), written to CSV or
 Parquet.
 
 A sweep can also run on a Dask cluster (``scheduler="tcp://host:8786"``, :mod:`.cluster`):
-the pendulums are cut into chunks, each chunk runs the serial kernel on a worker, and the
+the pendulums are cut into chunks, each chunk runs the kernel on one thread of a worker, and the
 result is the same, bit for bit, as on one machine.
 """
 from __future__ import annotations
@@ -25,10 +26,11 @@ from ..errors import InputError
 from ..methods import resolve
 from ..period import _check_amplitudes, agm_period
 from .chunk import run_chunk
-from .kernel import BLOCK, first_returns, first_returns_serial
+from .kernel import BLOCK, LANES, first_returns, first_returns_lanes, first_returns_serial
 from .result import STATUS, SweepResult
 
-__all__ = ["BLOCK", "CHUNK", "STATUS", "SweepResult", "first_returns", "first_returns_serial", "sweep"]
+__all__ = ["BLOCK", "CHUNK", "LANES", "STATUS", "SweepResult", "first_returns", "first_returns_lanes",
+           "first_returns_serial", "sweep"]
 
 #: Pendulums per chunk (one progress tick, one Dask task): large enough to keep
 #: both cores busy, small enough for a smooth progress bar.

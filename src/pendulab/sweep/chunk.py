@@ -12,7 +12,7 @@ import numpy as np
 from ..interpolation import inverse_cubic_rows, linear_zero
 from ..methods import Status
 from ..period import agm_period
-from .kernel import first_returns, first_returns_serial
+from .kernel import first_returns
 
 
 def run_chunk(code: int, order: int, alphas: np.ndarray, lengths: np.ndarray, g: float, h: float,
@@ -24,10 +24,9 @@ def run_chunk(code: int, order: int, alphas: np.ndarray, lengths: np.ndarray, g:
     exact = np.asarray(agm_period(lengths, alphas, g), dtype=float)
     n_steps = np.array([step_count(0.0, default_t_max(float(T), h), h) for T in exact], dtype=np.int64)
     cs = -g / lengths
-    if parallel:
-        status, j, _, z2w = first_returns(code, order, alphas, cs, h, n_steps)
-    else:
-        status, j, _, z2w = first_returns_serial(code, order, alphas, cs, h, n_steps)
+    # One thread on a Dask worker (the worker's own threads run the chunks); the same kernel
+    # as on all cores, so the same results bit for bit.
+    status, j, _, z2w = first_returns(code, order, alphas, cs, h, n_steps, threads=None if parallel else 1)
     # As estimate_period: where theta' changes by less than the smallest normal double per
     # step, its sign change is lost to underflow; no return is found.
     underflow = alphas * (g / lengths) * h < np.finfo(float).tiny

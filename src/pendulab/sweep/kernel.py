@@ -1,24 +1,36 @@
-"""The sweep's kernel: the streamed period search for many pendulums, on every core.
+"""The sweep's kernels: the streamed period search for many pendulums, on every core.
 
 :func:`first_returns_serial` runs :func:`pendulab._kernels.first_return` for each pendulum
-in turn and releases the GIL; :func:`first_returns` runs it on several threads at once.
+in turn (any method). For the coursework's algorithm (3) :func:`first_returns_lanes`
+advances :data:`LANES` pendulums in lock-step with a polynomial sine and cosine, a loop
+LLVM compiles to vector instructions (AVX: four pendulums per instruction): about twice
+the serial kernel's rate on one core. :func:`first_returns` runs either on several
+threads; both release the GIL.
+
+The lock-step kernel's sine and cosine are fdlibm's (within 1 ulp), not the C library's
+(correctly rounded almost always), so its points differ from the scalar kernel's in the
+last bits, and these differences grow along the trajectory like any rounding error: the
+period estimates of the two kernels differ by a relative ``1e-10`` at most at
+``h >= 1e-4`` (``tests/test_sweep.py`` checks the bound against
+:func:`pendulab.crossing.estimate_period`), far below the estimates' own errors.
 """
 from __future__ import annotations
 
+import math
 from concurrent.futures import ThreadPoolExecutor
 
 import numpy as np
 from numba import get_num_threads, njit
 
-from .._kernels import first_return
+from .._kernels import FOUND, LEFT_OSCILLATION, NO_RETURN, TAYLOR2, TOO_EARLY, first_return
 
 
 @njit(cache=True, nogil=True)
 def first_returns_serial(method, order, alphas, cs, h, n_steps):
     """``first_return`` for each pendulum ``(alphas[i], cs[i])`` with ``n_steps[i]`` steps, in turn.
 
-    Releases the GIL: :func:`first_returns` runs it on several threads at once, and a
-    Dask worker runs it for one chunk.
+    Releases the GIL: :func:`first_returns` runs it on several threads at once. The same
+    results, bit for bit, as :func:`pendulab.crossing.estimate_period`.
     """
     m = len(alphas)
     status = np.empty(m, np.int64)
@@ -34,6 +46,125 @@ def first_returns_serial(method, order, alphas, cs, h, n_steps):
     return status, j, z1w, z2w
 
 
+# sin and cos on [-pi/4, pi/4]: the minimax polynomials of fdlibm's k_sin.c and k_cos.c
+# (Sun Microsystems, 1993; error below 2^-58), after reduction by pi/2 in two parts
+# (Cody and Waite, *Software Manual for the Elementary Functions*, 1980), in three parts of
+# 33 bits each (fdlibm's e_rem_pio2.c), so q PIO2_k is exact for the |q| <= 2 of |x| < 4.
+S1, S2, S3 = -1.66666666666666324348e-01, 8.33333333332248946124e-03, -1.98412698298579493134e-04
+S4, S5, S6 = 2.75573137070700676789e-06, -2.50507602534068634195e-08, 1.58969099521155010221e-10
+C1, C2, C3 = 4.16666666666666019037e-02, -1.38888888888741095749e-03, 2.48015872894767294178e-05
+C4, C5, C6 = -2.75573143513906633035e-07, 2.08757232129817482790e-09, -1.13596475577881948265e-11
+PIO2_1, PIO2_2, PIO2_3 = 1.57079632673412561417e+00, 6.07710050630396597660e-11, 2.02226624871116645580e-21
+PIO2_3T = 8.47842766036889956997e-32
+TWO_OVER_PI = 6.36619772367581382433e-01
+
+
+@njit(cache=True, nogil=True, inline="always")
+def sincos(x):
+    """``(sin x, cos x)`` within 1 ulp for ``|x| < 4``, without branches (so it vectorises)."""
+    q = math.floor(x * TWO_OVER_PI + 0.5)
+    # x - q pi/2 as r + y, pi/2 in three parts of 33 bits (the products with q are exact)
+    # as fdlibm's e_rem_pio2.c: full relative accuracy also near the zeros of sin and cos.
+    r = x - q * PIO2_1
+    t, w = r, q * PIO2_2
+    r = t - w  # the rounding error of r is carried into the next part
+    t, w = r, q * PIO2_3 - ((t - r) - w)
+    r = t - w
+    w = q * PIO2_3T - ((t - r) - w)
+    hi = r
+    r = hi - w
+    y = (hi - r) - w
+    z = r * r
+    v = z * r
+    s = r - ((z * (0.5 * y - v * (S2 + z * (S3 + z * (S4 + z * (S5 + z * S6))))) - y) - v * S1)
+    hz = 0.5 * z
+    w = 1.0 - hz
+    c = w + (((1.0 - w) - hz) + (z * z * (C1 + z * (C2 + z * (C3 + z * (C4 + z * (C5 + z * C6))))) - r * y))
+    k = np.int64(q) & 3  # quadrant: sin(r + k pi/2), cos(r + k pi/2)
+    sn = c if k & 1 else s
+    cs = s if k & 1 else c
+    return (-sn if k & 2 else sn), (-cs if (k + 1) & 2 else cs)
+
+
+#: Pendulums advanced together by :func:`first_returns_lanes`.
+LANES = 16
+_RUNNING, _LAST, _DONE = 0, 1, 2
+
+
+@njit(cache=True, nogil=True)
+def _lanes(alphas, cs, h, n, status, j, w1, w2):
+    """(3) for up to :data:`LANES` pendulums in lock-step, to each one's first return.
+
+    The same search as :func:`pendulab._kernels.first_return`, per lane: the step loop
+    over the lanes has no branch (it vectorises); the rare events (a sign change, the end
+    of a lane's steps) are handled in a second loop only at the steps where one occurs.
+    """
+    m = alphas.size
+    z1 = alphas.copy()
+    z2 = np.zeros(m)
+    a1, b1, a2, b2 = np.zeros(m), np.zeros(m), np.zeros(m), np.zeros(m)
+    z1n, z2n = np.empty(m), np.empty(m)
+    state = np.zeros(m, np.int64)
+    hh = 0.5 * h * h
+    left = m
+    for i in range(n.max() + 1):
+        for k in range(m):  # equations (3), as taylor2_step
+            s, co = sincos(z1[k])
+            z1n[k] = z1[k] + h * z2[k] + hh * cs[k] * s
+            z2n[k] = z2[k] + h * cs[k] * s + hh * cs[k] * z2[k] * co
+        event = False
+        for k in range(m):
+            event |= (state[k] != _DONE) & ((state[k] == _LAST) | (i >= n[k]) | (not abs(z1n[k]) < math.pi)
+                                           | ((z2[k] > 0.0) & (z2n[k] <= 0.0) & (z1n[k] > 0.0)))
+        if event:
+            for k in range(m):
+                if state[k] == _DONE:
+                    continue
+                if state[k] == _LAST:  # Z_{j+2}
+                    w1[k, 4], w2[k, 4] = z1n[k], z2n[k]
+                    state[k] = _DONE
+                elif i >= n[k]:
+                    status[k], j[k], state[k] = NO_RETURN, n[k], _DONE
+                elif not abs(z1n[k]) < math.pi:  # also catches NaN
+                    status[k], j[k], state[k] = LEFT_OSCILLATION, i, _DONE
+                elif z2[k] > 0.0 and z2n[k] <= 0.0 and z1n[k] > 0.0:  # j = i
+                    if i < 2:
+                        status[k], j[k], state[k] = TOO_EARLY, i, _DONE
+                    elif i + 2 > n[k]:  # Z_{j+2} lies beyond t_max
+                        status[k], j[k], state[k] = NO_RETURN, n[k], _DONE
+                    else:
+                        status[k], j[k], state[k] = FOUND, i, _LAST
+                        w1[k, 0], w1[k, 1], w1[k, 2], w1[k, 3] = a2[k], a1[k], z1[k], z1n[k]
+                        w2[k, 0], w2[k, 1], w2[k, 2], w2[k, 3] = b2[k], b1[k], z2[k], z2n[k]
+                if state[k] == _DONE:
+                    left -= 1
+                    z1n[k] = z2n[k] = 0.0  # at rest: no further events
+            if left == 0:
+                break
+        for k in range(m):
+            a2[k], b2[k], a1[k], b1[k] = a1[k], b1[k], z1[k], z2[k]
+            z1[k], z2[k] = z1n[k], z2n[k]
+
+
+@njit(cache=True, nogil=True)
+def first_returns_lanes(alphas, cs, h, n_steps):
+    """:func:`first_returns_serial` for (3), :data:`LANES` pendulums at a time in lock-step.
+
+    Pendulums of similar step counts should be neighbours (:func:`first_returns` sorts
+    them): a block runs until its slowest lane is done. Each pendulum's result does not
+    depend on its neighbours.
+    """
+    m = len(alphas)
+    status = np.zeros(m, np.int64)
+    j = np.zeros(m, np.int64)
+    z1w = np.zeros((m, 5))
+    z2w = np.zeros((m, 5))
+    for lo in range(0, m, LANES):
+        hi = min(lo + LANES, m)
+        _lanes(alphas[lo:hi], cs[lo:hi], h, n_steps[lo:hi], status[lo:hi], j[lo:hi], z1w[lo:hi], z2w[lo:hi])
+    return status, j, z1w, z2w
+
+
 #: Pendulums per task of :func:`first_returns`: small enough that the threads finish
 #: together (the periods differ by 5x between 1 and 179 degrees), large enough that a task
 #: outlasts its scheduling.
@@ -42,21 +173,35 @@ _POOL: list[ThreadPoolExecutor] = []
 
 
 def first_returns(method, order, alphas, cs, h, n_steps, threads: int | None = None):
-    """:func:`first_returns_serial` on ``threads`` threads (default: numba's thread count).
+    """The period search for each pendulum on ``threads`` threads (default: numba's thread count).
 
-    Blocks of :data:`BLOCK` pendulums go to the threads as they become free. The serial
-    kernel releases the GIL, so the threads run on separate cores; each pendulum gives
-    the same result, bit for bit, as on one thread. (A ``parallel=True`` build of the
-    same loop ran each thread about 1.5x slower than the serial kernel.)
+    (3) (``method`` taylor2) runs :func:`first_returns_lanes` on the pendulums sorted by
+    step count, the other methods :func:`first_returns_serial`. Blocks of :data:`BLOCK`
+    pendulums go to the threads as they become free; the kernels release the GIL, so the
+    threads run on separate cores. Each pendulum gives the same result, bit for bit, on
+    any number of threads. (A ``parallel=True`` build of the serial loop ran each thread
+    about 1.5x slower than the serial kernel.)
     """
     threads = get_num_threads() if threads is None else threads
+    lanes = method == TAYLOR2
+    order_ = np.argsort(n_steps, kind="stable") if lanes else None
+    if lanes:
+        alphas, cs, n_steps = alphas[order_], cs[order_], n_steps[order_]
+
+    def kernel(a, c, n):
+        return first_returns_lanes(a, c, h, n) if lanes else first_returns_serial(method, order, a, c, h, n)
+
     m = len(alphas)
     if threads <= 1 or m <= BLOCK:
-        return first_returns_serial(method, order, alphas, cs, h, n_steps)
-    if not _POOL or _POOL[0]._max_workers != threads:
-        _POOL[:] = [ThreadPoolExecutor(threads, thread_name_prefix="pendulab-sweep")]
-    starts = range(0, m, BLOCK)
-    parts = list(_POOL[0].map(
-        lambda lo: first_returns_serial(method, order, alphas[lo:lo + BLOCK], cs[lo:lo + BLOCK], h,
-                                        n_steps[lo:lo + BLOCK]), starts))
-    return tuple(np.concatenate([p[k] for p in parts]) for k in range(4))
+        out = kernel(alphas, cs, n_steps)
+    else:
+        if not _POOL or _POOL[0]._max_workers != threads:
+            _POOL[:] = [ThreadPoolExecutor(threads, thread_name_prefix="pendulab-sweep")]
+        parts = list(_POOL[0].map(
+            lambda lo: kernel(alphas[lo:lo + BLOCK], cs[lo:lo + BLOCK], n_steps[lo:lo + BLOCK]), range(0, m, BLOCK)))
+        out = tuple(np.concatenate([p[k] for p in parts]) for k in range(4))
+    if lanes:
+        back = np.empty_like(order_)
+        back[order_] = np.arange(m)
+        out = tuple(x[back] for x in out)
+    return out
