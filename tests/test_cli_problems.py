@@ -130,3 +130,14 @@ def test_module_import_stays_light():
             "print(sorted(m for m in ('numba', 'scipy', 'matplotlib') if m in sys.modules))\n")
     res = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, timeout=120)
     assert res.stdout.strip() == "[]", res.stderr
+
+
+@pytest.mark.parametrize("amplitude", ["4pi/5", "3.14159265358979"])
+def test_quadrature_rate_sentence_states_the_observed_rate(cli, amplitude):
+    # The explanation names the rate the table observed (0.5 at 4pi/5; far below it near pi,
+    # where the n of the table are not yet large), not a fixed 0.5.
+    data = cli("quadrature", "-a", amplitude, "--n", "10,100,1000", "--json").json
+    rate = data["rows"][-1]["rate"]
+    assert rate == pytest.approx(math.log10(data["rows"][1]["error"] / data["rows"][2]["error"]))
+    assert f"observed over the last two n here: {rate:.3f})" in data["rate_explanation"]
+    assert (abs(rate - 0.5) < 0.01) == (amplitude == "4pi/5")

@@ -547,7 +547,8 @@ class Problem5(Result):
         """5(d) in words: why the error of (11) on (1) falls like ``n^(-1/2)``."""
         from .words import sentence
 
-        return sentence("p5.rate")
+        last = self.rows[-1].rate if self.rows else None
+        return sentence("p5.rate", observed="none (fewer than two n, or an error at rounding level)" if last is None else f"{last:.3f}")
 
 
 def problem5(

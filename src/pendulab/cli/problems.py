@@ -224,7 +224,9 @@ def quadrature(length, amplitude, ns, substitution, graded, g, as_json):
 
     substitution = substitution or graded
     r = problem5(float(length), float(amplitude), ns, substitution, float(g), graded=graded)
-    answer_5a, rate_text = sentence("p5.answer_5a"), sentence("p5.rate")
+    last = r.rows[-1].rate
+    answer_5a = sentence("p5.answer_5a")
+    rate_text = sentence("p5.rate", observed="none (fewer than two n, or an error at rounding level)" if last is None else f"{last:.3f}")
     if as_json:
         rows = []
         for row in r.rows:
