@@ -61,7 +61,7 @@ def small_angle_period(length: Any, g: Any = G) -> Any:
         v.positive("length", float(lengths.min()))  # no subnormal lengths
     for extreme in (lengths.min(initial=1.0), lengths.max(initial=1.0)):
         v.period_scale(float(extreme), g)  # refuses an overflowing period by arithmetic
-    with np.errstate(under="ignore"):
+    with np.errstate(under="ignore", over="ignore"):  # r is only used when finite and normal
         r = lengths / g
     if np.all((r >= v.TINY) & (r < np.inf)):
         return 2 * np.pi * np.sqrt(r)
