@@ -288,7 +288,8 @@ def parse_list(name: str, text: object, parse: Callable[[str, str], T], allowed:
         try:
             out.append(parse(name, part))
         except InputError as exc:
-            raise InputError(name, exc.value, f"{allowed}; this item is not ({exc.allowed})") from None
+            why = allowed if exc.allowed in allowed else f"{allowed}; this item is not ({exc.allowed})"
+            raise InputError(name, exc.value, why) from None
     return out
 
 
