@@ -46,7 +46,7 @@ def report(more: tuple[str, ...], students: str, lang: str, output: str) -> None
         require(package, "pendulab report")
     from .._warm import warm_kernels
 
-    warm_kernels()  # compiles while the report imports matplotlib and typst
+    warm_kernels(thinned=False)  # the two kernels the report calls, compiled while it starts
     from ..report import build_report
 
     ctx = click.get_current_context()
