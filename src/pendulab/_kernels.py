@@ -162,8 +162,11 @@ def first_return(method, order, alpha, c, h, n):
     """
     a2 = b2 = a1 = b1 = 0.0  # Z_{i-2}, Z_{i-1}
     z1, z2 = alpha, 0.0  # Z_i
-    z1w = np.zeros(5)
-    z2w = np.zeros(5)
+    z1w = np.empty(5)  # np.empty, not np.zeros: the one allocator taylor_step compiles already
+    z2w = np.empty(5)
+    for k in range(5):
+        z1w[k] = 0.0
+        z2w[k] = 0.0
     status, j = NO_RETURN, n
     for i in range(n):
         z1n, z2n = step(method, order, z1, z2, h, c)
