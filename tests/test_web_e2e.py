@@ -167,6 +167,8 @@ def test_bad_input_is_named_on_the_page(page, server):
     page.fill("#step", "1e-3")
     page.wait_for_function("document.querySelector('#error').textContent.startsWith('amplitude')")
     assert "invalid" in page.get_attribute("#amplitude", "class")
+    # The value is echoed as typed (with the unit sent apart), not as "200deg".
+    assert page.locator("#error").text_content().startswith("amplitude = 200 is not allowed")
     page.fill("#amplitude", "30")
     wait_for_period(page, ellipk_period(3.5, math.pi / 6))
     assert page.locator("#error").is_hidden()

@@ -75,6 +75,8 @@ function pageQuery() {
 
 function writeURL() { history.replaceState(null, "", "?" + pageQuery()); }
 
+// The amplitude as the server reads it (the key convertAmplitude compares); requests send
+// the text as typed with its unit, so an error echoes what the person typed.
 function apiAmplitude() {
   const a = state.amplitude;
   return state.unit === "deg" && PLAIN_NUMBER.test(a) ? a + "deg" : a;
@@ -84,7 +86,7 @@ function apiQuery(which, extra = {}) {
   const method = which === "b" ? state.method2 : state.method;
   const step = which === "b" && state.step2 ? state.step2 : state.step;
   return new URLSearchParams({
-    length: state.length, amplitude: apiAmplitude(), g: state.g, method, step, t_max: state.t_max, ...extra,
+    length: state.length, amplitude: state.amplitude, unit: state.unit, g: state.g, method, step, t_max: state.t_max, ...extra,
   }).toString();
 }
 
@@ -159,7 +161,7 @@ async function updateConvergence(my) {
   for (let k = 0; k <= 12; k++) steps.push(T / Math.pow(10, 1.5 + k / 4));
   steps.push(s.input.step);
   const q = new URLSearchParams({
-    length: state.length, amplitude: apiAmplitude(), g: state.g, method: state.method,
+    length: state.length, amplitude: state.amplitude, unit: state.unit, g: state.g, method: state.method,
     steps: steps.map((h) => h.toPrecision(6)).join(","),
   });
   let res;
