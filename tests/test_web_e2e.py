@@ -46,9 +46,14 @@ def browser():
 def page(browser, server):
     """A page that may reach nothing but the pendulab server: anything else is recorded and aborted."""
     context = browser.new_context(viewport={"width": 1400, "height": 1100}, accept_downloads=True)
+    yield guarded_page(context, server)
+    context.close()
+
+
+def guarded_page(context, server):
+    """A new page of ``context`` that records (and aborts) requests leaving the server, and console errors."""
     pg = context.new_page()
-    pg.outside = []
-    pg.errors = []
+    pg.outside, pg.errors = [], []
 
     def route(r):
         if r.request.url.startswith(server + "/"):
@@ -60,8 +65,7 @@ def page(browser, server):
     pg.route("**/*", route)
     pg.on("pageerror", lambda e: pg.errors.append(str(e)))
     pg.on("console", lambda m: pg.errors.append(m.text) if m.type == "error" else None)
-    yield pg
-    context.close()
+    return pg
 
 
 def shown_period(pg) -> float:
@@ -199,19 +203,7 @@ VIEWPORTS = [(390, 844), (1024, 768), (1400, 900)]
 
 def open_page(browser, server, url: str, width: int = 1400, height: int = 1100):
     context = browser.new_context(viewport={"width": width, "height": height})
-    pg = context.new_page()
-    pg.outside, pg.errors = [], []
-
-    def route(r):
-        if r.request.url.startswith(server + "/"):
-            r.continue_()
-        else:
-            pg.outside.append(r.request.url)
-            r.abort()
-
-    pg.route("**/*", route)
-    pg.on("pageerror", lambda e: pg.errors.append(str(e)))
-    pg.on("console", lambda m: pg.errors.append(m.text) if m.type == "error" else None)
+    pg = guarded_page(context, server)
     pg.goto(server + url)
     pg.wait_for_function("document.querySelectorAll('.js-plotly-plot .main-svg').length >= 6", timeout=60_000)
     pg.wait_for_function("document.querySelector('#status').textContent.includes('steps of')", timeout=60_000)
