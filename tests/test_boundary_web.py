@@ -58,7 +58,7 @@ def check(client, path: str, query: dict[str, str], names: set[str]) -> None:
     assert client.get("/api/config").status_code == 200  # still answering
 
 
-@settings(max_examples=300, deadline=10_000, suppress_health_check=[HealthCheck.function_scoped_fixture])
+@settings(max_examples=300, deadline=30_000, suppress_health_check=[HealthCheck.function_scoped_fixture])
 @given(case=st.sampled_from(CASES), value=HOSTILE)
 def test_hostile_value_in_any_parameter(client, case, value):
     path, name = case
@@ -67,7 +67,7 @@ def test_hostile_value_in_any_parameter(client, case, value):
     check(client, path, BASE | {name: value}, {name} | related)
 
 
-@settings(max_examples=100, deadline=10_000, suppress_health_check=[HealthCheck.function_scoped_fixture])
+@settings(max_examples=100, deadline=30_000, suppress_health_check=[HealthCheck.function_scoped_fixture])
 @given(path=st.sampled_from(sorted(p for p, names in endpoints().items() if len(names) >= 2)), data=st.data())
 def test_several_hostile_values_at_once(client, path, data):
     names = endpoints()[path]

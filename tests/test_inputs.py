@@ -74,7 +74,7 @@ def test_huge_literals_are_refused_at_once(text):
         inputs.real("v", text)
     with pytest.raises(InputError):
         inputs.angle("v", text)
-    assert time.perf_counter() - start < 0.5  # Fraction("1e99999999") would not finish
+    assert time.perf_counter() - start < 5  # Fraction("1e99999999") would not finish
 
 
 @pytest.mark.parametrize("text, why", [("1e400", "magnitude"), ("1e-320", "between"), ("0", "> 0"), ("-1", "> 0"),
@@ -173,7 +173,7 @@ PARSERS = {
 }
 
 
-@settings(max_examples=400, deadline=1000)
+@settings(max_examples=400, deadline=5000)
 @given(parser=st.sampled_from(sorted(PARSERS)), text=st.one_of(HOSTILE, st.text()))
 def test_every_parser_returns_or_raises_one_line(parser, text):
     if _one_line_input_error(PARSERS[parser], text) and parser in ("real", "positive", "non_negative", "angle"):
@@ -181,7 +181,7 @@ def test_every_parser_returns_or_raises_one_line(parser, text):
         assert math.isfinite(float(x))  # whatever is accepted has a finite double
 
 
-@settings(max_examples=200, deadline=1000)
+@settings(max_examples=200, deadline=5000)
 @given(mantissa=st.integers(-10**30, 10**30), exponent=st.integers(-300, 270))  # |value| < 1e301
 def test_decimal_literals_are_exact(mantissa, exponent):
     x = inputs.real("v", f"{mantissa}e{exponent}")
@@ -189,7 +189,7 @@ def test_decimal_literals_are_exact(mantissa, exponent):
     assert float(x) == float(Fraction(mantissa) * Fraction(10) ** exponent)  # correctly rounded
 
 
-@settings(max_examples=200, deadline=1000)
+@settings(max_examples=200, deadline=5000)
 @given(value=st.floats(min_value=2.3e-308, max_value=1.7e308))
 def test_a_double_written_back_reads_as_itself(value):
     assert float(inputs.positive("v", repr(value))) == value
