@@ -12,7 +12,7 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 
 from conftest import reference_period
-from pendulab._agm import ERROR_BOUND, agm_periods_dd, half_angle_cos
+from pendulab._agm import COS_HI, COS_LO, ERROR_BOUND, N_TABLE, SIN_HI, SIN_LO, agm_periods_dd, half_angle_cos
 from pendulab.period import agm_period, nearest_period
 
 G = 9.80665
@@ -57,8 +57,8 @@ def test_scalar_path_gives_the_same_doubles():
 def test_double_double_value_is_within_the_error_bound():
     # The kernel's unrounded th + tl against the reference at 60 digits.
     alpha = np.concatenate([RANDOM_ALPHA[:300], HARD])
-    out, lo, flags = np.empty(alpha.size), np.empty(alpha.size), np.empty(alpha.size, np.int8)
-    agm_periods_dd(alpha, np.array([2.5]), G, out, lo, flags)
+    out, lo, hard = np.empty(alpha.size), np.empty(alpha.size), np.empty(alpha.size, np.int64)
+    assert agm_periods_dd(alpha, np.array([2.5]), G, out, lo, hard)[1] == -1
     with mpmath.workdps(60):
         worst = max(abs((mpmath.mpf(h) + mpmath.mpf(l)) / reference_period(2.5, a, dps=60) - 1)
                     for h, l, a in zip(out, lo, alpha))
@@ -69,19 +69,34 @@ def test_half_angle_cos_is_accurate_to_double_double():
     from numba import njit
 
     f = njit(lambda a: half_angle_cos(a))
+    # Amplitudes on both sides of every table interval's ends, y = (pi - alpha)/2 = (i + 1/2)/N.
+    ends = math.pi - (2 * np.arange(int(math.pi / 2 * N_TABLE) + 1) + 1) / N_TABLE
+    edges = (ends[:, None] + np.array([-1e-3, -1e-12, 0.0, 1e-12, 1e-3])).ravel()
+    alpha = np.concatenate([RANDOM_ALPHA[:400], HARD[:-4], edges[(edges >= 0) & (edges < math.pi)]])
     with mpmath.workdps(50):
-        for a in np.concatenate([RANDOM_ALPHA[:200], HARD[:-4]]):
+        for a in alpha:
             h, l = f(a)
             ref = mpmath.cos(mpmath.mpf(a) / 2)
-            assert abs((mpmath.mpf(h) + mpmath.mpf(l)) / ref - 1) < 2.0**-85
+            assert abs((mpmath.mpf(h) + mpmath.mpf(l)) / ref - 1) < 2.0**-89
+
+
+def test_sin_cos_table_is_exact_to_double_double():
+    with mpmath.workdps(50):
+        for i, row in enumerate(zip(SIN_HI, SIN_LO, COS_HI, COS_LO)):
+            y = mpmath.mpf(i) / N_TABLE
+            for (hi, lo), ref in zip((row[:2], row[2:]), (mpmath.sin(y), mpmath.cos(y))):
+                assert hi == mpmath.libmp.to_float(ref._mpf_, rnd="n")  # the nearest double
+                assert abs(mpmath.mpf(hi) + mpmath.mpf(lo) - ref) <= 2.0**-106 * max(abs(ref), 2.0**-8)
+    assert (len(SIN_HI) - 1) / N_TABLE > math.pi / 2 + 0.5 / N_TABLE  # every y in [0, pi/2] has a row
 
 
 def test_failed_rounding_tests_are_recomputed():
     # A few amplitudes in 10^6 fail the cheap test; find some and check they come out right.
     alpha = np.random.default_rng(0).uniform(0, math.pi, 1_000_000)
-    out, flags = np.empty(alpha.size), np.empty(alpha.size, np.int8)
-    agm_periods_dd(alpha, np.array([1.0]), G, out, out[:0], flags)
-    hard = alpha[flags == 1]
+    out, index = np.empty(alpha.size), np.empty(alpha.size, np.int64)
+    count, bad = agm_periods_dd(alpha, np.array([1.0]), G, out, out[:0], index)
+    assert bad == -1
+    hard = alpha[index[:count]]
     assert 0 < len(hard) < 20
     assert np.array_equal(agm_period(1.0, hard), [nearest(1.0, a) for a in hard])
 
@@ -120,3 +135,13 @@ def test_errors_of_the_double_loop_are_gone():
 def test_block_edges(n):
     alpha = RANDOM_ALPHA[:n]
     assert np.array_equal(agm_period(1.5, alpha), [nearest(1.5, a) for a in alpha])
+
+
+@pytest.mark.parametrize("bad", [math.pi, -0.0 - 1e-300, math.nan, math.inf, -1e300, 7.0])
+def test_the_kernel_refuses_amplitudes_outside_0_pi(bad):
+    # Checked in the kernel's own pass (an amplitude out of range would index past the table).
+    alpha = np.concatenate([RANDOM_ALPHA[:40], [bad], RANDOM_ALPHA[40:50], [bad]])
+    out, index = np.empty(alpha.size), np.empty(alpha.size, np.int64)
+    assert agm_periods_dd(alpha, np.array([1.0]), G, out, out[:0], index)[1] == 40
+    with pytest.raises(ValueError, match="amplitude"):
+        agm_period(1.0, alpha)

@@ -181,8 +181,10 @@ def agm_period(length: Any, amplitude: Any, g: Any = G, iterations: int | None =
     """
     if iterations is not None:
         iterations = v.integer("iterations", iterations, 0, 1000)
-    alpha = _check_amplitudes(amplitude)
-    scalar = _is_scalar(alpha) and _is_scalar(length)
+    exact_array = iterations is None and not (_is_scalar(amplitude) and _is_scalar(length))
+    # The compiled kernel checks an array of amplitudes itself (in the same pass).
+    alpha = amplitude if exact_array else _check_amplitudes(amplitude)
+    scalar = not exact_array and _is_scalar(alpha) and _is_scalar(length)
     if scalar and iterations is not None:
         return small_angle_period(length, g) / agm_mean(math.cos(0.5 * alpha), iterations)
     if scalar:
@@ -207,9 +209,11 @@ def agm_period(length: Any, amplitude: Any, g: Any = G, iterations: int | None =
     # One length for all: the kernel computes 2 pi sqrt(l/g) once.
     flat_l = lengths.reshape(1) if lengths.size == 1 else np.ascontiguousarray(np.broadcast_to(lengths, shape)).ravel()
     out = np.empty(flat_a.size)
-    flags = np.empty(flat_a.size, np.int8)
-    agm_periods_dd(flat_a, flat_l, g, out, out[:0], flags)
-    for i in np.flatnonzero(flags):  # the rounding test failed: a few in 10^6
+    hard = np.empty(flat_a.size, np.int64)  # pages only touched where written
+    count, bad = agm_periods_dd(flat_a, flat_l, g, out, out[:0], hard)
+    if bad >= 0:
+        v.amplitude("amplitude", float(flat_a[bad]))  # raises
+    for i in hard[:count]:  # the rounding test failed: a few in 10^6
         out[i] = nearest_period(float(flat_l[i if flat_l.size > 1 else 0]), float(flat_a[i]), g)
     return out.reshape(shape)
 
