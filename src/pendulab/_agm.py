@@ -133,7 +133,10 @@ def _prefer_512_bit_vectors(typingctx):
     faster; a CPU without AVX-512 ignores the attribute.
     """
     def codegen(context, builder, signature, args):
-        set.add(builder.function.attributes, '"prefer-vector-width"="512"')
+        try:
+            set.add(builder.function.attributes, '"prefer-vector-width"="512"')
+        except TypeError:  # a later llvmlite's attribute set: keep LLVM's default width
+            pass
         return context.get_dummy_value()
 
     return types.void(), codegen
