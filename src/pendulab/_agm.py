@@ -17,6 +17,7 @@ the AGM's square roots start from a single-precision estimate refined by Newton'
 """
 from __future__ import annotations
 
+import contextlib
 import math
 from fractions import Fraction
 from typing import Any
@@ -133,10 +134,8 @@ def _prefer_512_bit_vectors(typingctx):
     faster; a CPU without AVX-512 ignores the attribute.
     """
     def codegen(context, builder, signature, args):
-        try:
+        with contextlib.suppress(TypeError):  # a later llvmlite's attribute set: default width
             set.add(builder.function.attributes, '"prefer-vector-width"="512"')
-        except TypeError:  # a later llvmlite's attribute set: keep LLVM's default width
-            pass
         return context.get_dummy_value()
 
     return types.void(), codegen
