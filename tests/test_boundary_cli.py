@@ -14,6 +14,7 @@ from __future__ import annotations
 
 import contextlib
 import os
+import re
 import resource
 import socket
 import subprocess
@@ -105,12 +106,45 @@ def run_in_process(args: list[str]) -> tuple[int, str]:
     return code, err.getvalue().decode("utf-8", "replace")
 
 
-def check(args: list[str]) -> None:
+#: A name as the library spells it (``t_max``, ``length_error``, ``t0``, ``x0``): in a CLI
+#: message every argument is named as an option (``--t-max``, ``--t0``). Not part of an
+#: option, a number, a path or a file name (the lookarounds), nor a subscript of the
+#: mathematics (``x_1``, ``t_j``).
+LIBRARY_NAME = re.compile(r"(?<![-\w./\\])(?:[a-z]+(?:_[a-z][a-z0-9]+)+|t0|x0)(?![-\w./\\])")
+#: The head of an input error: the option or argument, then the value as it echoes it.
+HEAD = re.compile(r"pendulab \S+: error: (\S+) = (.*?) is not allowed: must be ")
+
+
+def as_typed(echo: str, typed: str) -> bool:
+    """Whether ``echo`` shows ``typed`` (or one of its list items) as typed: verbatim,
+    or quoted by :func:`pendulab.inputs.shown` where unprintable or long, never a repr of
+    printable text or a float's rendering (``1e9`` shown as ``1000000000``)."""
+    from pendulab import inputs
+
+    items = re.split(r"\s*,\s*|\s+", typed.strip())
+    candidates = [typed, *items, *(part for item in items for part in item.split(":"))]
+    return (echo in ("(empty)", "(missing)", inputs.shown(typed)) or re.fullmatch(r"\d+ items", echo) is not None
+            or any(echo in (inputs.shown(c), inputs.shown(c.strip())) for c in candidates if c.strip()))
+
+
+def check(args: list[str], typed: dict[str, str] | None = None) -> None:
+    """Exit 0, or exit 2 with one line in the CLI's words; ``typed``: option -> the hostile text given it.
+
+    The line names no argument by the library's spelling (the typed values aside), and
+    an error about one of the ``typed`` options echoes its value as typed.
+    """
     code, err = run_in_process(args)
     assert code in (0, 2), (args, code, err)
     if code == 2:
         assert err.endswith("\n") and err.count("\n") == 1, (args, err)
         assert err.startswith("pendulab") and "Traceback" not in err, (args, err)
+        rest = err
+        for value in args:  # what was typed may hold anything, t_max included
+            rest = rest.replace(value, " ") if value.strip() else rest
+        assert not LIBRARY_NAME.search(rest), (args, err)
+        head = HEAD.match(err)
+        if head and typed and head[1] in typed:
+            assert as_typed(head[2], typed[head[1]]), (args, err)
 
 
 #: Examples per command; approximations has one option, --plot, whose valid values draw a figure.
@@ -128,9 +162,10 @@ def _one_hostile_value(command, data):
     param = data.draw(st.sampled_from(value_params(command)), label="parameter")
     value = data.draw(HOSTILE, label="value")
     if isinstance(param, click.Argument):
-        check([command, *BASE[command], value])
+        check([command, *BASE[command], value], {param.name.upper(): value})
     else:
-        check([command, *BASE[command], max(param.opts, key=len), value])
+        option = max(param.opts, key=len)
+        check([command, *BASE[command], option, value], {option: value})
 
 
 @settings(max_examples=40, deadline=30_000,
@@ -139,9 +174,11 @@ def _one_hostile_value(command, data):
 def test_several_hostile_values_at_once(sandbox, command, values):
     params = [p for p in value_params(command) if isinstance(p, click.Option)]
     args = [command, *BASE[command]]
+    typed = {}
     for p, value in zip(params, values):
         args += [max(p.opts, key=len), value]
-    check(args)
+        typed[max(p.opts, key=len)] = value
+    check(args, typed)
 
 
 @pytest.mark.parametrize("args", [["--bogus"], ["nosuchcommand"], ["period", "--length"], ["period", "-l", "1"],
@@ -172,7 +209,7 @@ REPRODUCTIONS = [
     (["simulate", "--step", "1e-8", "--t-max", "100"], "--step"),
     (["simulate", "--t-max", "1e9"], "--t-max"),
     (["simulate", "--step", "1e-300"], "--step"),
-    (["fit", "--t-max", "1e9"], "--step"),
+    (["fit", "--t-max", "1e9"], "--t-max = 1e9 "),
     (["report", "--students", "²"], "--students"),
     (["approximations", "--plot", "x.xyz"], "--plot"),
 ]
@@ -193,3 +230,38 @@ def test_a_run_that_works_fits_in_the_limits(tmp_path):
                          capture_output=True, text=True, timeout=30, preexec_fn=_limit_memory, cwd=tmp_path)
     assert res.returncode == 0, res.stderr
     assert len(res.stdout.splitlines()) == 1 + 5001
+
+
+# ------------------------------------------------------------------ the CLI's words, case by case
+
+@pytest.mark.parametrize("args, head, hint", [
+    # The limit on the step count blames the option typed, the other left at its default.
+    (["fit", "--t-max", "1e9"], "--t-max = 1e9 ", "or a larger --step"),
+    (["fit", "--step", "1e-9"], "--step = 1e-9 ", "or a shorter --t-max"),
+    (["fit", "--step", "1"], "--step = 1 ", "<= --t-max/6"),
+    (["fit", "--t-max", "0.05", "--step", "0.01"], "--step = 0.01 ", "<= --t-max/6"),  # both typed: the step
+    (["simulate", "--t-max", "1e9"], "--t-max = 1e9 ", "or a larger --step"),
+    (["simulate", "--step", "1e-8", "--t-max", "100"], "--step = 1e-8 ", "or a shorter --t-max"),
+    (["simulate", "--t-max", "0.01"], "--t-max = 0.01 ", "> --step = 0.1 s"),
+    (["estimate", "--t-max", "1e9"], "--t-max = 1e9 ", "or a larger --step"),
+    (["estimate", "--step", "1e-2,1e-12"], "--step = 1e-12 ", "or a shorter --t-max"),
+    (["estimate", "--t-max", "-3"], "--t-max = -3 ", "> 0 s"),
+    (["sweep", "-a", "10deg:20deg:3", "--step", "1e-2,1e-12"], "--step = 1e-12 ", ">= "),
+    (["gravity", "--length-error", "2m"], "--length-error = 2m ", "< --length = 1.152 m"),
+    # Values as typed, a method name too (it was echoed as a repr, 'foo').
+    (["sweep", "--method", "foo"], "--method = foo ", "taylor:P"),
+    (["sweep", "--method", "rk4,foo"], "--method = foo ", "taylor:P"),
+    (["simulate", "--method", "foo"], "--method = foo ", "taylor:P"),
+    # The range with its bounds, also for a number beyond the exponent cap.
+    (["gravity", "--length", "1e-99999999"], "--length = 1e-99999999 ", "between 2.225e-308 m and 1.798e+308 m"),
+    (["gravity", "--length", "1e-320"], "--length = 1e-320 ", "between 2.225e-308 m and 1.798e+308 m"),
+    (["gravity", "--length", "1e-306mm"], "--length = 1e-306mm ", "between 2.225e-308 m"),
+    (["gravity", "--period-error", "1e-330"], "--period-error = 1e-330 ", "0 or between 2.225e-308 s"),
+    (["period", "-l", "1e-99999999", "-a", "1"], "--length = 1e-99999999 ", "between 2.225e-308 and 1.798e+308"),
+    (["simulate", "--t-max", "1e999"], "--t-max = 1e999 ", "between 1e-400 and 1.798e+308"),
+])
+def test_messages_in_the_cli_words(sandbox, args, head, hint):
+    code, err = run_in_process(args)
+    assert code == 2 and err.count("\n") == 1, err
+    assert err.split(": error: ", 1)[1].startswith(head) and hint in err, err
+    assert not LIBRARY_NAME.search(err) and "'" not in err, err

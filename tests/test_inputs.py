@@ -77,7 +77,7 @@ def test_huge_literals_are_refused_at_once(text):
     assert time.perf_counter() - start < 5  # Fraction("1e99999999") would not finish
 
 
-@pytest.mark.parametrize("text, why", [("1e400", "magnitude"), ("1e-320", "between"), ("0", "> 0"), ("-1", "> 0"),
+@pytest.mark.parametrize("text, why", [("1e400", "between"), ("1e-320", "between"), ("0", "> 0"), ("-1", "> 0"),
                                        ("inf", "> 0"), ("1,5", "> 0"), ("0x10", "> 0"), ("", "(empty)")])
 def test_positive(text, why):
     with pytest.raises(InputError) as exc:

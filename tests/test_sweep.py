@@ -131,7 +131,7 @@ def test_cli_sweep(tmp_path, capsys):
     (["--amplitude", "170deg:10deg:9"], "--amplitude = 170deg:10deg:9"),  # reversed
     (["--amplitude", "10deg:10deg:9"], "empty or reversed"),
     (["--amplitude", "1deg:180deg:9"], "--amplitude"),
-    (["--method", "taylor:0"], "--method = 'taylor:0'"),
+    (["--method", "taylor:0"], "--method = taylor:0 is"),  # as typed, no quotes
     (["--step", "0"], "--step"),
     (["--output", "out.xlsx"], "--output"),
 ])

@@ -15,14 +15,16 @@ from .errors import InputError
 
 def check_writable(name: str, path: str | os.PathLike) -> Path:
     """Fail early, before any work, when ``path``'s folder does not exist or is not writable."""
+    from .inputs import shown  # as typed; quoted where unprintable (no terminal escapes echoed)
+
     p = Path(path)
     folder = p.parent if str(p.parent) else Path(".")
     if p.is_dir():
-        raise InputError(name, str(path), "a file path, not a folder")
+        raise InputError(name, shown(path), "a file path, not a folder")
     if not folder.is_dir():
-        raise InputError(name, str(path), f"a path in an existing folder ({folder} does not exist)")
+        raise InputError(name, shown(path), f"a path in an existing folder ({shown(folder)} does not exist)")
     if not os.access(folder, os.W_OK):
-        raise InputError(name, str(path), f"a path in a writable folder ({folder} is not writable)")
+        raise InputError(name, shown(path), f"a path in a writable folder ({shown(folder)} is not writable)")
     return p
 
 

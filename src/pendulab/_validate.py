@@ -71,32 +71,52 @@ def integer(name: str, value: Any, low: int, high: int | None = None) -> int:
     return int(value)
 
 
+def _span(t0: float) -> str:
+    """``t_max - t0`` in words, ``t_max`` alone where ``t0 = 0`` (the usual case, and a CLI without ``--t0``)."""
+    return "t_max" if t0 == 0 else "t_max - t0"
+
+
 def time_span(t0: Any, t_max: Any, step: Any) -> tuple[float, float, float]:
     """Check ``t0 < t_max`` and ``0 < step < t_max - t0``; return them as floats."""
     t0 = finite("t0", t0)
     t_max = finite("t_max", t_max)
     step = positive("step", step)
     if not t_max > t0:
-        raise InputError("t_max", t_max, f"> t0 = {t0:g}")
+        raise InputError("t_max", t_max, f"> {t0:g} s" if t0 == 0 else f"> t0 = {t0:g} s", mentions=("t0",))
     if not step < t_max - t0:
-        raise InputError("step", step, f"< t_max - t0 = {t_max - t0:g}")
+        span = _span(t0)
+        raise InputError("step", step, f"< {span} = {t_max - t0:g} s", mentions=("t_max", "t0"),
+                         alternative=InputError("t_max", t_max, f"> {'' if t0 == 0 else 't0 + '}step = "
+                                                f"{t0 + step:g} s", mentions=("t0", "step")))
     return t0, t_max, step
 
 
-def steps_within(name: str, t0: float, t_max: float, step: float, limit: int) -> int:
+def steps_within(name: str, t0: float, t_max: float, step: float, limit: int, what: str = "steps") -> int:
     """``N = Round((t_max - t0)/h)`` of (6), refused by arithmetic when it exceeds ``limit``.
 
     Checked on the float quotient before ``int()``: a huge ``t_max`` or a tiny ``step``
-    is one clear error, never an ``OverflowError`` or a gigantic allocation later.
+    is one clear error, never an ``OverflowError`` or a gigantic allocation later. The
+    error blames ``name`` (the step); its alternative states the limit for ``t_max``.
     """
     q = (t_max - t0) / step
     if not q <= limit + 0.5:  # also catches inf and NaN
-        raise InputError(
-            name, step,
-            f">= (t_max - t0)/{limit:.0e} = {(t_max - t0) / limit:.3g} s (at most {limit:.0e} steps; "
-            "or a shorter t_max)",
-        )
+        raise step_limit(name, step, t0, t_max, limit, what)
     return int(round(q))
+
+
+def step_limit(name: str, step: float, t0: float, t_max: float, limit: int, what: str = "steps") -> InputError:
+    """At most ``limit`` ``what`` of ``step`` over ``[t0, t_max]``: an error blaming ``name``
+    (the step), with the same limit for ``t_max`` as its alternative; each hint names the
+    other argument."""
+    span = _span(t0)
+    over = span if t0 == 0 else f"({span})"
+    at_most = f"at most {limit:.0e} {what}"
+    return InputError(
+        name, step, f">= {over}/{limit:.0e} = {(t_max - t0) / limit:.3g} s ({at_most}; or a shorter t_max)",
+        mentions=("t_max", "t0"),
+        alternative=InputError("t_max", t_max, f"<= {t0 + limit * step:.4g} s ({at_most} with {name} = {step:g} s; "
+                                               f"or a larger {name})", mentions=(name,)),
+    )
 
 
 def sqrt_ratio(length: float, g: float) -> float:

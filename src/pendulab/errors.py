@@ -29,12 +29,22 @@ class InputError(PendulabError, ValueError):
         The value received (shown as written; a long or unprintable text is shortened).
     allowed : str
         The allowed range, in words (``"a finite number > 0"``).
+    mentions : tuple of str
+        Other arguments that ``allowed`` names (every occurrence of the word) by the library's spelling (``"t_max"`` in
+        ``">= t_max/1e5"``): the CLI writes them as its options (``--t-max``).
+    alternative : InputError, optional
+        The same limit stated for another argument (a step count too large blames
+        ``step``; its alternative blames ``t_max``): the CLI blames that one instead when
+        the person typed it and left this one at its default.
     """
 
-    def __init__(self, name: str, value: object, allowed: str):
+    def __init__(self, name: str, value: object, allowed: str, *, mentions: tuple[str, ...] = (),
+                 alternative: InputError | None = None):
         self.name = name
         self.value = value
         self.allowed = allowed
+        self.mentions = mentions
+        self.alternative = alternative
         super().__init__(f"{name} = {_shown(value)} is not allowed: must be {allowed}")
 
 

@@ -72,8 +72,14 @@ _DEG_FORM = re.compile(rf"(?P<num>{_NUM}(?:\s*/\s*{_NUM})?)\s*(?:deg|degrees?|°
 _RAD_FORM = re.compile(rf"(?P<num>{_NUM}(?:\s*/\s*{_NUM})?)\s*(?:rad|radians?)", _FLAGS)
 _QUANTITY = re.compile(rf"(?P<num>{_NUM})\s*(?P<unit>[a-z]*)", _FLAGS)
 _SEPARATOR = re.compile(r"\s*,\s*|\s+")
+_ANY_EXPONENT = re.compile(r"(?<=[0-9.])[eE]([+-]?[0-9]+)", re.ASCII)
 
 NUMBER_WORDS = "a number such as 3.5, 2e-3 or 1/3"
+#: The ranges of the number parsers, with their bounds: a finite real, a positive number
+#: (its double normal, so it keeps all 53 bits), and a non-negative one.
+REAL_RANGE = f"0 or of magnitude between 1e-{MAX_EXPONENT} and {HUGE:.4g}"
+POSITIVE_RANGE = f"between {TINY:.4g} and {HUGE:.4g}"
+NON_NEGATIVE_RANGE = f"0 or between {TINY:.4g} and {HUGE:.4g}"
 ANGLE_WORDS = "an angle such as 0.785, pi/4, 4pi/5, 45deg or 45°"
 
 
@@ -81,6 +87,8 @@ ANGLE_WORDS = "an angle such as 0.785, pi/4, 4pi/5, 45deg or 45°"
 def shown(text: object) -> str:
     """``text`` as an error message shows it: as typed when short and printable, else quoted."""
     s = str(text)
+    if not s:
+        return "(empty)"
     if len(s) > 40:
         return repr(s[:37] + "...")
     return s if s and s.isprintable() and s == s.strip() else repr(s)
@@ -108,6 +116,11 @@ def _decimal(literal: str) -> Fraction:
     return Fraction(literal)
 
 
+def _beyond_cap(text: str) -> bool:
+    """Whether ``text`` writes a decimal exponent beyond :data:`MAX_EXPONENT` (``1e-99999999``)."""
+    return any(abs(int(e)) > MAX_EXPONENT for e in _ANY_EXPONENT.findall(text))
+
+
 def _ratio(text: str) -> Fraction | None:
     """``a`` or ``a/b`` exactly; None when ``text`` is not of that form (or ``b = 0``)."""
     m = _RATIO.fullmatch(text)
@@ -131,35 +144,39 @@ def is_number(text: object) -> bool:
 
 
 # --------------------------------------------------------------------------- numbers
-def real(name: str, text: object, allowed: str = NUMBER_WORDS) -> Exact:
-    """A finite real number (``3.5``, ``-2e-3``, ``1/3``), kept exactly."""
+def real(name: str, text: object, allowed: str = NUMBER_WORDS, bounds: str = REAL_RANGE) -> Exact:
+    """A finite real number (``3.5``, ``-2e-3``, ``1/3``), kept exactly.
+
+    A number beyond the exponent cap or whose double overflows is refused with
+    ``bounds``, the caller's range in words.
+    """
     s = clean(name, text, allowed)
     value = _ratio(s)
     if value is None:
-        raise InputError(name, shown(s), allowed)
+        raise InputError(name, shown(s), f"{allowed}, {bounds}" if _beyond_cap(s) else allowed)
     x = Exact(value, 0, s)
     if not math.isfinite(float(x)):
-        raise InputError(name, shown(s), f"{allowed}, of magnitude at most {HUGE:.4g}")
+        raise InputError(name, shown(s), f"{allowed}, {bounds}")
     return x
 
 
 def positive(name: str, text: object, allowed: str = "a finite number > 0") -> Exact:
     """A number > 0 whose double is normal: between 2.2e-308 and 1.8e308."""
-    x = real(name, text, allowed)
+    x = real(name, text, allowed, POSITIVE_RANGE)
     if x.coef <= 0:
         raise InputError(name, shown(x.text), allowed)
     if not TINY <= float(x) <= HUGE:
-        raise InputError(name, shown(x.text), f"{allowed}, between {TINY:.4g} and {HUGE:.4g}")
+        raise InputError(name, shown(x.text), f"{allowed}, {POSITIVE_RANGE}")
     return x
 
 
 def non_negative(name: str, text: object, allowed: str = "a finite number >= 0") -> Exact:
     """A number >= 0: 0, or a number between 2.2e-308 and 1.8e308."""
-    x = real(name, text, allowed)
+    x = real(name, text, allowed, NON_NEGATIVE_RANGE)
     if x.coef < 0:
         raise InputError(name, shown(x.text), allowed)
     if x.coef != 0 and not TINY <= float(x) <= HUGE:
-        raise InputError(name, shown(x.text), f"{allowed}, 0 or between {TINY:.4g} and {HUGE:.4g}")
+        raise InputError(name, shown(x.text), f"{allowed}, {NON_NEGATIVE_RANGE}")
     return x
 
 
@@ -181,6 +198,9 @@ def quantity(name: str, text: object, units: dict[str, Fraction], default_unit: 
     """
     allowed = (f"a finite number {'> 0' if strict else '>= 0'}, "
                f"in {' or '.join(units)} (default {default_unit})")
+    si = next(iter(units))
+    # The range rules of positive(), on the value in SI units.
+    bounds = f"{'' if strict else '0 or '}between {TINY:.4g} {si} and {HUGE:.4g} {si}"
     s = clean(name, text, allowed)
     m = _QUANTITY.fullmatch(s)
     unit = (m["unit"] or default_unit) if m else None
@@ -188,12 +208,13 @@ def quantity(name: str, text: object, units: dict[str, Fraction], default_unit: 
         raise InputError(name, shown(s), allowed)
     try:
         value = _decimal(m["num"]) * units[unit]
-    except ValueError:
-        raise InputError(name, shown(s), allowed) from None
+    except ValueError:  # beyond the exponent cap
+        raise InputError(name, shown(s), f"{allowed}, {bounds}") from None
     x = Exact(value, 0, s)
-    ok = value > 0 and TINY <= float(x) <= HUGE  # the range rules of positive()
-    if not (ok or (not strict and value == 0)):
+    if value < 0 or (strict and value == 0):
         raise InputError(name, shown(s), allowed)
+    if value != 0 and not TINY <= float(x) <= HUGE:
+        raise InputError(name, shown(s), f"{allowed}, {bounds}")
     return x
 
 
@@ -225,7 +246,8 @@ def angle_value(name: str, text: object) -> Exact:
             return Exact(value, 0, s)
     except (ValueError, ZeroDivisionError):
         pass
-    raise InputError(name, shown(s), ANGLE_WORDS)
+    cap = f", with decimal exponents in [-{MAX_EXPONENT}, {MAX_EXPONENT}]" if _beyond_cap(s) else ""
+    raise InputError(name, shown(s), ANGLE_WORDS + cap)
 
 
 def angle(name: str, text: object, open_low: bool = False) -> Exact:

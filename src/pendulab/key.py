@@ -43,7 +43,7 @@ def parse_groups(text: str, source: str = "groups") -> list[tuple[int, ...]]:
             students = inputs.students("groups", line)  # the CLI's grammar of student numbers
             group_length(students)
         except InputError as exc:
-            raise InputError("groups", f"{source} line {number}: {raw.strip()!r}", exc.allowed) from None
+            raise InputError("groups", f"{source} line {number}: {inputs.shown(raw.strip())}", exc.allowed) from None
         groups.append(students)
     if not groups:
         raise InputError("groups", source, "a file with at least one group (one line of student numbers)")
@@ -59,7 +59,7 @@ def read_groups(path: str | os.PathLike) -> list[tuple[int, ...]]:
         text = p.read_text(encoding="utf-8")
     except (OSError, UnicodeDecodeError) as exc:
         reason = exc.strerror if isinstance(exc, OSError) and exc.strerror else type(exc).__name__
-        raise InputError("groups", str(path), f"a readable UTF-8 text file ({reason})") from None
+        raise InputError("groups", inputs.shown(str(path)), f"a readable UTF-8 text file ({reason})") from None
     return parse_groups(text, str(path))
 
 
@@ -67,7 +67,7 @@ def output_format(path: str | os.PathLike) -> str:
     """``csv``, ``json`` or ``pdf`` from the extension of ``path``."""
     ext = Path(path).suffix.lower().lstrip(".")
     if ext not in FORMATS:
-        raise InputError("output", str(path), "a file name ending in .csv, .json or .pdf")
+        raise InputError("output", inputs.shown(str(path)), "a file name ending in .csv, .json or .pdf")
     return ext
 
 

@@ -81,8 +81,9 @@ def resolve(name: object, argument: str = "method") -> Method:
             p = name[len(_FAMILY):]
             if p.isascii() and p.isdigit() and len(p) <= 3 and 1 <= int(p) <= MAX_TAYLOR_ORDER:
                 return Method(name, Kernel.TAYLOR, int(p), f"Taylor method of order {int(p)}")
-    shown = repr(name) if not isinstance(name, str) or len(name) <= 40 else repr(name[:37] + "...")
-    raise InputError(argument, shown, allowed())
+    from .inputs import shown  # as typed, like every other value (a repr only where unprintable)
+
+    raise InputError(argument, shown(name) if isinstance(name, str) else repr(name), allowed())
 
 
 def menu() -> list[Method]:

@@ -446,8 +446,11 @@ def problem4(
     # then evaluated on 20 times as many points), and at least one point per term of (10).
     _, t_end, h = v.time_span(0.0, t_max, v.positive("step", step))
     if v.steps_within("step", 0.0, t_end, h, PROBLEM4_MAX_STEPS) + 1 < len(TRIG_BASIS):
-        raise InputError("step", step, f"<= t_max/{len(TRIG_BASIS) - 1} = {t_end / (len(TRIG_BASIS) - 1):.6g} s "
-                         f"so that the data has at least {len(TRIG_BASIS)} points, one per coefficient of (10)")
+        gaps = len(TRIG_BASIS) - 1
+        why = f"so that the data has at least {len(TRIG_BASIS)} points, one per coefficient of (10)"
+        raise InputError("step", step, f"<= t_max/{gaps} = {t_end / gaps:.6g} s {why}", mentions=("t_max",),
+                         alternative=InputError("t_max", t_max, f">= {gaps} x step = {gaps * h:.6g} s {why}",
+                                                mentions=("step",)))
     data = simulate(length, amplitude, step, t_max, 0.0, g)
     if not np.all(np.isfinite(data.theta)):
         raise NumericalError(

@@ -14,7 +14,6 @@ import numpy as np
 from . import _validate as v
 from . import methods as _methods
 from .cases import G
-from .errors import InputError
 from .results import Result
 
 
@@ -139,11 +138,7 @@ def simulate(
     n = v.steps_within("step", t0, t_max, step, MAX_STEPS)
     kept = n // stride + 1 + (n % stride != 0)
     if kept > MAX_POINTS:
-        raise InputError(
-            "step", step,
-            f">= (t_max - t0)/{MAX_POINTS - 1:.0e} = {(t_max - t0) / (MAX_POINTS - 1):.3g} s "
-            f"(at most {MAX_POINTS - 1:.0e} points kept; or a shorter t_max, or a stride)",
-        )
+        raise v.step_limit("step", step, t0, t_max, MAX_POINTS - 1, "points kept (or a stride)")
     index = np.arange(0, n + 1, stride)
     if index[-1] != n:
         index = np.append(index, n)

@@ -162,9 +162,11 @@ def gravity_estimate(length: float, length_error: float, period: float, period_e
     length_error = v.non_negative("length_error", length_error)
     period_error = v.non_negative("period_error", period_error)
     if not length_error < length:
-        raise InputError("length_error", length_error, f"< length = {length:g} (a positive length in the box)")
+        raise InputError("length_error", length_error, f"< length = {length:g} m (so that the box holds positive lengths only)",
+                         mentions=("length",))
     if not period_error < period:
-        raise InputError("period_error", period_error, f"< period = {period:g} (a positive period in the box)")
+        raise InputError("period_error", period_error, f"< period = {period:g} s (so that the box holds positive periods only)",
+                         mentions=("period",))
     try:
         g = gravity(length, period)
         abs_err = abs_error_bound(length, length_error, period, period_error)

@@ -6,12 +6,14 @@ Subcommands live in small modules loaded on demand, so ``pendulab --help`` and
 from __future__ import annotations
 
 import importlib
+import re
 import sys
 
 import click
 
 from .._version import __version__
-from ..errors import MissingExtraError, PendulabError
+from ..errors import InputError, MissingExtraError, PendulabError
+from ._common import TYPED, one_line, option_name
 
 # command name -> "module:function", relative to this package.
 COMMANDS = {
@@ -39,6 +41,15 @@ class LazyGroup(click.Group):
 
     def get_command(self, ctx: click.Context, name: str) -> click.Command | None:
         return self._load(name)
+
+    def invoke(self, ctx: click.Context):
+        try:
+            return super().invoke(ctx)
+        except PendulabError as exc:  # a library error, told in the command's words
+            cmd = self._load(ctx.invoked_subcommand or "")
+            if cmd is None:
+                raise
+            raise CliError(in_cli_words(exc, cmd, ctx.meta.get(TYPED, {}))) from exc
 
     @staticmethod
     def _load(name: str) -> click.Command | None:
@@ -85,13 +96,13 @@ def main(argv: list[str] | None = None) -> int:
         # Our parameter types already name the option, the value and the range.
         opts = tuple(exc.param.opts) if exc.param is not None else ()
         msg = exc.message if opts and exc.message.startswith(opts) else exc.format_message()
-        click.echo(f"{where}: error: {' '.join(msg.split())}", err=True)
+        click.echo(f"{where}: error: {one_line(msg)}", err=True)
         return 2
     except click.ClickException as exc:
-        click.echo(f"{where}: error: {' '.join(exc.format_message().split())}", err=True)
+        click.echo(f"{where}: error: {one_line(exc.format_message())}", err=True)
         return 2
-    except PendulabError as exc:
-        click.echo(f"{where}: error: {_cli_message(exc, sub)}", err=True)
+    except PendulabError as exc:  # raised outside a subcommand (in_cli_words tells the others)
+        click.echo(f"{where}: error: {one_line(str(exc))}", err=True)
         return 2
     except MissingExtraError as exc:
         click.echo(f"{where}: error: {exc}", err=True)
@@ -102,25 +113,73 @@ def main(argv: list[str] | None = None) -> int:
     return 0
 
 
-def _cli_message(exc: PendulabError, command: str | None) -> str:
-    """A library error in the CLI's words: the argument is named as the command spells it.
+class CliError(click.ClickException):
+    """A library error in the CLI's words: one line, exit status 2."""
 
-    ``t_max`` becomes ``--t-max`` when the command has that option, ``NUMBERS`` for an
-    argument; a name the command does not have stays the library's, without dashes.
+    exit_code = 2
+
+
+def in_cli_words(exc: PendulabError, cmd: click.Command, typed: dict[str, tuple[str, bool]]) -> str:
+    """A library error as the command's user typed it.
+
+    The argument is named as the command spells it (``t_max`` is ``--t-max``, ``numbers``
+    ``NUMBERS``), its value shown as typed (``1e9``, not ``1000000000``), and the other
+    arguments the message names by the library's spelling become options too. An error
+    with an ``alternative`` (a limit on the step and ``t_max`` together) blames the
+    argument the person typed when the one blamed was left at its default. ``typed``:
+    parameter name -> (text, typed by the person), from :class:`._common.Parsed`.
     """
-    from ..errors import InputError
-    from ._common import option_name
+    def param_of(name: str) -> click.Parameter | None:
+        flag = "--" + name.replace("_", "-")
+        return next((p for p in cmd.params if p.name == name or flag in getattr(p, "opts", ())), None)
+
+    def by_person(p: click.Parameter | None) -> bool:
+        return p is not None and p.name in typed and typed[p.name][1]
+
+    def words(text: str, mentions: tuple[str, ...]) -> str:
+        def option(m: re.Match) -> str:
+            word = m[0]
+            p = param_of(word) if word in mentions or _IDENTIFIER.fullmatch(word) else None
+            return option_name(p) if p is not None else word
+
+        return _WORD.sub(option, text)
 
     if not isinstance(exc, InputError):
-        return " ".join(str(exc).split())
-    name = exc.name
-    cmd = LazyGroup._load(command) if command in COMMANDS else None
-    flag = "--" + name.replace("_", "-")
-    for p in cmd.params if cmd is not None else ():
-        if p.name == name or flag in getattr(p, "opts", ()):
-            name = option_name(p)
-            break
-    return " ".join(str(exc).replace(exc.name, name, 1).split())
+        return one_line(words(str(exc), ()))
+    if exc.alternative is not None and by_person(param_of(exc.alternative.name)) and not by_person(param_of(exc.name)):
+        exc = exc.alternative
+    p = param_of(exc.name)
+    name = option_name(p) if p is not None else exc.name
+    value = _as_typed(p, exc.value, typed)
+    return one_line(f"{name} = {value} is not allowed: must be {words(exc.allowed, exc.mentions)}")
+
+
+#: A word that is not part of an option (``--t-max``) or of a number (``1e-05``).
+_WORD = re.compile(r"(?<![-\w.])[A-Za-z_]\w*(?![-\w])")
+#: A name that is clearly the library's (``t_max``, ``t0``), rewritten even where not mentioned.
+_IDENTIFIER = re.compile(r"[a-z]+(?:_[a-z0-9]+)+|[a-z]+[0-9]+")
+
+
+def _as_typed(param: click.Parameter | None, value: object, typed: dict[str, tuple[str, bool]]) -> str:
+    """``value`` as the person typed it: the parameter's text, or the item of its list
+    whose value it is; the library's rendering where neither is found."""
+    from .. import inputs
+    from ..errors import _shown
+
+    if isinstance(value, str) or param is None or param.name not in typed:
+        return _shown(value)
+    text = typed[param.name][0]
+    parse = getattr(param.type, "parse", None)
+    for candidate in (text, *inputs._SEPARATOR.split(text.strip())):
+        try:
+            parsed = parse(candidate) if parse is not None else candidate
+            if hasattr(parsed, "__len__") and not isinstance(parsed, str) and len(parsed) == 1:
+                parsed = parsed[0]
+            if float(parsed) == float(value):  # type: ignore[arg-type]
+                return inputs.shown(candidate.strip())
+        except (PendulabError, TypeError, ValueError, OverflowError):
+            continue
+    return _shown(value)
 
 
 if __name__ == "__main__":  # pragma: no cover

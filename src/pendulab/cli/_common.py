@@ -3,6 +3,7 @@ from __future__ import annotations
 
 import json
 import math
+import re
 import sys
 from collections.abc import Callable
 from typing import Any
@@ -13,6 +14,10 @@ from .. import inputs
 from ..cases import G_TEXT
 from ..errors import InputError
 from ..exact import Exact
+
+#: Key of ``click.Context.meta``: parameter name -> (its text, whether the person typed it),
+#: for the messages of library errors (:func:`pendulab.cli.in_cli_words`).
+TYPED = "pendulab.typed"
 
 
 class Parsed(click.ParamType):
@@ -29,10 +34,23 @@ class Parsed(click.ParamType):
     def convert(self, value, param, ctx):
         if not isinstance(value, str):  # a default that is already a value
             return value
+        if ctx is not None and param is not None and param.name:
+            source = ctx.get_parameter_source(param.name)
+            typed = source not in (None, click.core.ParameterSource.DEFAULT, click.core.ParameterSource.DEFAULT_MAP)
+            ctx.meta.setdefault(TYPED, {})[param.name] = (value, typed)
         try:
             return self.parse(value)
         except InputError as exc:
-            self.fail(" ".join(str(exc).replace(exc.name, option_name(param), 1).split()), param, ctx)
+            self.fail(one_line(str(exc).replace(exc.name, option_name(param), 1)), param, ctx)
+
+
+def one_line(text: str) -> str:
+    """``text`` on one line: each run of white space that holds a line break (or a tab) becomes
+    one space. Other runs are kept: a value echoed as typed keeps its spaces (``1  2``)."""
+    return _BREAKS.sub(" ", text).strip()
+
+
+_BREAKS = re.compile(r"\s*[^\S ]\s*")
 
 
 def option_name(param: click.Parameter | None) -> str:
@@ -53,7 +71,7 @@ def choice(*values: str) -> Parsed:
     """One of ``values``, exactly as written."""
     def parse(text: str) -> str:
         if text not in values:
-            raise InputError("value", inputs.shown(text), "one of " + ", ".join(values))
+            raise InputError("value", inputs.shown(text) if text.strip() else "(empty)", "one of " + ", ".join(values))
         return text
 
     return Parsed(parse, "|".join(values))

@@ -114,18 +114,10 @@ def period(length, amplitude, iterations, digits, g, as_json):
 def simulate(length, amplitude, step, t_max, t0, digits, as_csv, plot, phase, method, g, as_json):
     """Simulate the pendulum by the Taylor algorithm (3): the table t, z1, z2."""
     from .. import _validate as v
-    from ..errors import InputError
     from ..taylor import simulate as run
 
     t0_, t_max_, h = v.time_span(t0, t_max, float(step))
-    rows = MAX_PRINTED - 1
-    if not (t_max_ - t0_) / h <= rows + 0.5:  # by arithmetic, before anything is allocated
-        ctx = click.get_current_context()
-        if ctx.get_parameter_source("step") is click.core.ParameterSource.DEFAULT:
-            raise InputError("t_max", t_max, f"<= t0 + {rows:.0e} h = {t0_ + rows * h:.6g} s to print at most "
-                             f"{rows:.0e} rows (or a larger --step)")
-        raise InputError("step", step, f">= (t_max - t0)/{rows:.0e} = {(t_max_ - t0_) / rows:.3g} s to print at "
-                         f"most {rows:.0e} rows (or a shorter --t-max)")
+    v.steps_within("step", t0_, t_max_, h, MAX_PRINTED - 1, "rows printed")  # before anything is allocated
     for name, path in (("plot", plot), ("phase", phase)):
         if path:
             check_plot_path(name, path)

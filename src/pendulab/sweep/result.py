@@ -11,6 +11,7 @@ import numpy as np
 
 from .._atomic import atomic_path, check_writable
 from ..errors import InputError
+from ..inputs import shown
 from ..methods import Status
 from ..results import Result
 
@@ -74,7 +75,7 @@ class SweepResult(Result):
         p = check_writable("output", path)
         suffix = p.suffix.lower()
         if suffix not in (".csv", ".parquet"):
-            raise InputError("output", str(path), "a file name ending in .csv or .parquet")
+            raise InputError("output", shown(str(path)), "a file name ending in .csv or .parquet")
         table = pa.table(dict(self.columns))
         with atomic_path(p) as tmp:
             if suffix == ".csv":
