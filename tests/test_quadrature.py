@@ -11,7 +11,7 @@ from pendulab.errors import InputError
 from pendulab.period import agm_period, period_mp
 from pendulab.problems import problem5
 from pendulab.quadrature import (
-    GAUSS3, Rule, composite, period_integrand, period_prefactor, quadrature_period, substituted_integrand,
+    GAUSS3, Rule, composite, composite_graded, period_integrand, period_prefactor, quadrature_period, substituted_integrand,
 )
 
 L, ALPHA = 3.5, 4 * math.pi / 5  # problem 5
@@ -145,6 +145,34 @@ def test_bad_n(n):
     with pytest.raises(InputError) as exc:
         quadrature_period(L, ALPHA, n)
     assert exc.value.name == "n"
+
+
+@pytest.mark.parametrize("n", [10**7 + 1, 10**9])
+def test_n_beyond_the_cap_is_refused_before_any_work(n):
+    # 1e9 panels were accepted: minutes of work for half a digit more than 1e7 gives.
+    with pytest.raises(InputError) as exc:
+        quadrature_period(L, ALPHA, n)
+    assert exc.value.name == "n" and "[1, 10000000]" in str(exc.value)
+    with pytest.raises(InputError):
+        composite(GAUSS3, np.exp, 0.0, 1.0, n)
+    with pytest.raises(InputError):
+        composite_graded(GAUSS3, np.exp, 1.0, 1e-3, n)
+
+
+def test_a_table_of_more_than_2e7_panels_in_all_is_refused():
+    from pendulab.quadrature import convergence_table
+
+    with pytest.raises(InputError, match=r"summing to at most 2e\+07 \(these sum to 3e\+07\)"):
+        convergence_table(L, ALPHA, [10**7] * 3, 6.2)
+
+
+def test_the_cap_is_past_the_point_of_use():
+    """At the cap, the substituted rule is long at the rounding level (mpmath's elliptic K as
+    reference), and the plain rule still loses its half digit per decade of n: n^(-1/2)."""
+    exact = float(4 * mpmath.sqrt(mpmath.mpf(L) / 9.80665) * mpmath.ellipk(mpmath.sin(mpmath.mpf(ALPHA) / 2) ** 2))
+    assert abs(quadrature_period(L, ALPHA, 100, substitution=True) - exact) < 4 * 2.0**-52 * exact
+    e3, e4 = (abs(quadrature_period(L, ALPHA, n) - exact) for n in (1000, 10000))
+    assert math.log10(e3 / e4) == pytest.approx(0.5, abs=1e-3)
 
 
 def test_bad_amplitude_and_interval():

@@ -50,8 +50,17 @@ CHUNK = 1 << 16
 #: The graded panels start with ``[0, k'/GRADED_FIRST]``: the integrand's singularities at
 #: ``psi = +-i k'`` then lie 2 * GRADED_FIRST half-widths from that panel's centre.
 GRADED_FIRST = 32
-#: The largest n accepted (about 3 s of numpy work per 10^7).
-MAX_N = 10**9
+#: The largest n accepted: 1.4 s of numpy work on a quiet machine. More is of no use.
+#: Against mpmath (``benchmarks/quadrature_cap.py``): the substituted integrand reaches the
+#: rounding level by n = 100 at 4pi/5 and n = 1e5 at pi - 1e-3, and n = 1e7 still gives
+#: 1.6e-12 at pi - 1e-6 (``graded=True`` reaches the rounding level with 3000 panels at
+#: every double below pi); the plain integrand's error falls as n^(-1/2) without end in
+#: reach (1.4e-4 at n = 1e6, 4.4e-5 at 1e7; full precision would need n ~ 1e31): each
+#: further factor 10 buys half a digit for ten times the work, the rate long established.
+MAX_N = 10**7
+#: The most panels one convergence table evaluates, all its n together (the table
+#: 1, 10, ..., 1e7 has 1.11e7).
+MAX_TOTAL_N = 2 * MAX_N
 
 
 @dataclass(frozen=True)
@@ -327,6 +336,9 @@ def convergence_table(length, amplitude, ns, exact: float, g=G, substitution: bo
     ns = [v.integer("n", n, 1, MAX_N) for n in ns]
     if not ns:
         raise InputError("n", "[]", "at least one number of subintervals")
+    if sum(ns) > MAX_TOTAL_N:
+        raise InputError("n", ns, f"numbers of subintervals summing to at most {MAX_TOTAL_N:.0e} (these sum to "
+                                  f"{sum(ns):.3g})")
     floor = 64 * np.finfo(float).eps * abs(exact)  # below this an error is rounding, not truncation
     periods = [quadrature_period(length, amplitude, n, g) for n in ns]
     errors = [abs(p - exact) for p in periods]

@@ -32,10 +32,14 @@ def _round(text: str) -> int | None:
 
 
 def _counts(text: str) -> list[int]:
-    """Numbers of subintervals: ``1,10,100`` (``1e5`` accepted), each in [1, MAX_N]."""
-    from ..quadrature import MAX_N
+    """Numbers of subintervals: ``1,10,100`` (``1e5`` accepted), each in [1, MAX_N], MAX_TOTAL_N in all."""
+    from ..quadrature import MAX_N, MAX_TOTAL_N
 
-    return inputs.integer_list("n", text, 1, MAX_N)
+    ns = inputs.integer_list("n", text, 1, MAX_N)
+    if sum(ns) > MAX_TOTAL_N:
+        raise InputError("n", inputs.shown(text.strip()), f"a list of integers in [1, {MAX_N:.0e}] summing to at most "
+                         f"{MAX_TOTAL_N:.0e} (these sum to {sum(ns):.3g})")
+    return ns
 
 
 LENGTH = _quantity(_M, "m", True)
