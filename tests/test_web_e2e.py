@@ -10,6 +10,7 @@ from __future__ import annotations
 import math
 import os
 import time
+from pathlib import Path
 from urllib.parse import parse_qs, urlparse
 
 import numpy as np
@@ -226,6 +227,48 @@ def test_no_sideways_overflow_and_no_console_errors(browser, server, width, heig
         if os.environ.get("PENDULAB_SCREENSHOT_DIR"):  # to look at the page by eye
             name = f"{width}x{height}_{abs(hash(url)) % 1000}.png"
             pg.screenshot(path=str(Path(os.environ["PENDULAB_SCREENSHOT_DIR"]) / name), full_page=True)
+    finally:
+        context.close()
+
+
+#: Each plot's title and mode bar as boxes (left, top, right, bottom), the bar's shown on hover.
+TITLE_AND_MODE_BAR = """() => [...document.querySelectorAll('.js-plotly-plot')].map(gd => {
+  const box = (e) => { if (!e) return null; const r = e.getBoundingClientRect();
+                       return r.width ? [r.left, r.top, r.right, r.bottom] : null; };
+  return {id: gd.id, text: gd.querySelector('.gtitle')?.textContent,
+          title: box(gd.querySelector('.gtitle')), bar: box(gd.querySelector('.modebar'))};
+})"""
+
+
+def overlap(a, b) -> bool:
+    return a is not None and b is not None and a[0] < b[2] and b[0] < a[2] and a[1] < b[3] and b[1] < a[3]
+
+
+@pytest.mark.parametrize("width, height", VIEWPORTS)
+@pytest.mark.parametrize("url", ["/", LONG_RUN])
+def test_no_title_runs_under_its_mode_bar(browser, server, width, height, url):
+    # At 1400 px the phase portrait's long title ("... of the run") ran under the mode bar;
+    # at 1024 px, where a plot is about 310 px wide, nearly every title did.
+    context, pg = open_page(browser, server, url, width, height)
+    try:
+        for plot_id in ("plot-theta", "plot-phase", "plot-estimates", "plot-convergence"):
+            pg.hover(f"#{plot_id}")  # the bar shows on hover (none on a phone)
+        try:
+            pg.wait_for_function(f"({TITLE_AND_MODE_BAR})().every(p => !p.bar || !p.title || "
+                                 "p.title[2] <= p.bar[0] || p.title[1] >= p.bar[3])", timeout=10_000)
+        except Exception:
+            pass  # the assertion below says which plot
+        plots = pg.evaluate(TITLE_AND_MODE_BAR)
+        assert len(plots) == 6 and all(p["title"] for p in plots)
+        assert any(p["bar"] for p in plots) == (width >= 700)
+        for p in plots:
+            assert not overlap(p["title"], p["bar"]), p
+            # The title stays inside its plot's box, above the plot area.
+            assert p["title"][2] <= pg.evaluate(f"document.getElementById('{p['id']}').getBoundingClientRect().right")
+        if os.environ.get("PENDULAB_SCREENSHOT_DIR"):  # to look at the page by eye
+            pg.screenshot(path=str(Path(os.environ["PENDULAB_SCREENSHOT_DIR"]) / f"titles_{width}_{len(url)}.png"),
+                          full_page=True)
+        assert pg.errors == []
     finally:
         context.close()
 

@@ -270,6 +270,28 @@ function plotConfig() {
     modeBarButtonsToRemove: ["lasso2d", "select2d"] };
 }
 
+// The mode bar (on hover, at the top right) shares the top row with the title, which starts
+// at the left: on a narrow plot or with a long title the bar would cover the title's end.
+// There the title moves down below the bar, and the plot area with it by as much.
+const TITLE_GAP = 3;
+
+function plot(id, traces, lay) {
+  return Plotly.react(id, traces, lay, plotConfig()).then(() => clearModeBar($(id)));
+}
+
+function clearModeBar(gd) {
+  const title = gd.querySelector(".gtitle"), bar = gd.querySelector(".modebar");
+  if (!title || !bar || !bar.getBoundingClientRect().width) return;  // no bar (a narrow screen)
+  const t = title.getBoundingClientRect(), b = bar.getBoundingClientRect();
+  if (t.right < b.left - TITLE_GAP || t.top >= b.bottom) return;  // beside it or below it already
+  const shift = b.bottom + TITLE_GAP - t.top;
+  const L = gd._fullLayout;
+  return Plotly.relayout(gd, {
+    "title.y": L.title.y - shift / L.height,
+    "margin.t": L.margin.t + shift,
+  });
+}
+
 function layout(title, xtitle, ytitle, extra = {}) {
   return {
     title: { text: title, font: { size: 13 }, x: 0.01, xanchor: "left", y: 0.97, yanchor: "top" },
@@ -313,7 +335,7 @@ function renderTheta() {
       hovertemplate: "t = %{x:.4f} s<br>θ = %{y:.6f} rad<extra></extra>" });
   }
   const title = marks <= MAX_PERIOD_MARKS ? "Angle θ(t)" : `Angle θ(t): ${marks.toLocaleString("en")} periods of T = ${T.toPrecision(6)} s`;
-  Plotly.react("plot-theta", traces, layout(title, "t (s)", "θ (rad)", { shapes, annotations, ...twoMethods(traces) }), plotConfig());
+  plot("plot-theta", traces, layout(title, "t (s)", "θ (rad)", { shapes, annotations, ...twoMethods(traces) }));
 }
 
 function renderPhase() {
@@ -334,11 +356,11 @@ function renderPhase() {
   traces.push({ x: [st ? st.theta : null], y: [st ? st.omega : null], mode: "markers", marker: { color: COLORS.cursor, size: 9 },
     name: "now", showlegend: false, hoverinfo: "skip" });
   anim.phaseCursor = traces.length - 1;
-  const title = s.phase.orbits > 1 ? `Phase portrait: ${s.phase.orbits} one-period stretches of the run` : "Phase portrait (θ, θ′)";
-  Plotly.react("plot-phase", traces, layout(title, "θ (rad)", "θ′ (rad/s)", {
+  const title = s.phase.orbits > 1 ? `Phase portrait: ${s.phase.orbits} sampled periods` : "Phase portrait (θ, θ′)";
+  plot("plot-phase", traces, layout(title, "θ (rad)", "θ′ (rad/s)", {
     annotations: [{ x: a, y: 0, text: "P", showarrow: true, arrowhead: 0, ax: 22, ay: -22, font: { color: COLORS.p } }],
     ...twoMethods(traces.slice(0, -2)),
-  }), plotConfig());
+  }));
 }
 
 function renderError() {
@@ -350,9 +372,9 @@ function renderError() {
       hovertemplate: "t = %{x:.4f} s<br>θ − θ_exact = %{y:.3e} rad<extra></extra>" });
   }
   const per = sims.a.error.per_period;
-  Plotly.react("plot-error", traces, layout("Global error θ_sim − θ_exact", `t (s): ${per.toPrecision(3)} samples a period`, "error (rad)", {
+  plot("plot-error", traces, layout("Global error θ_sim − θ_exact", `t (s): ${per.toPrecision(3)} samples a period`, "error (rad)", {
     shapes: [cursorShape(anim.t)], ...twoMethods(traces),
-  }), plotConfig());
+  }));
 }
 
 function renderEnergy() {
@@ -363,9 +385,9 @@ function renderEnergy() {
     traces.push({ x: s.energy.t, y: s.energy.drift, mode: "lines", line: { color, width: 1.4 }, name: label(s),
       hovertemplate: "t = %{x:.4f} s<br>(E − E₀)/(mgl) = %{y:.3e}<extra></extra>" });
   }
-  Plotly.react("plot-energy", traces, layout("Energy drift (E − E₀)/(m g l)", "t (s)", "drift", {
+  plot("plot-energy", traces, layout("Energy drift (E − E₀)/(m g l)", "t (s)", "drift", {
     shapes: [cursorShape(anim.t)], ...twoMethods(traces),
-  }), plotConfig());
+  }));
 }
 
 function renderEstimates() {
@@ -373,10 +395,10 @@ function renderEstimates() {
   const e = p.estimate;
   const T = p.exact;
   if (!e) {
-    Plotly.react("plot-estimates", [], layout("Period estimates − exact T", "", "estimate − T (s)", {
+    plot("plot-estimates", [], layout("Period estimates − exact T", "", "estimate − T (s)", {
       annotations: [{ text: "no period from this simulation", showarrow: false, xref: "paper", yref: "paper", x: 0.5, y: 0.5 }],
       xaxis: { visible: false }, yaxis: { visible: false },
-    }), plotConfig());
+    }));
     return;
   }
   const half = (e.bracket[1] - e.bracket[0]) / 2;
@@ -387,18 +409,18 @@ function renderEstimates() {
     { x: ["cubic p(0)"], y: [e.cubic - T], mode: "markers", marker: { color: COLORS.cubic, size: 11, symbol: "diamond" },
       error_y: { type: "data", array: [Math.abs(e.cubic_error_estimate || 0)], color: COLORS.cubic }, hovertemplate: `cubic ${e.cubic} s<br>error %{y:.3e} s<extra></extra>` },
   ];
-  Plotly.react("plot-estimates", traces, layout(`Period estimates − exact T = ${T.toPrecision(10)} s`, "", "estimate − T (s)", {
+  plot("plot-estimates", traces, layout(`Period estimates − exact T = ${T.toPrecision(10)} s`, "", "estimate − T (s)", {
     shapes: [{ type: "line", xref: "paper", x0: 0, x1: 1, y0: 0, y1: 0, line: { color: COLORS.exact, width: 1.5, dash: "dash" } }],
     annotations: [{ xref: "paper", x: 1, y: 0, text: "exact (AGM)", showarrow: false, xanchor: "right", yanchor: "bottom", font: { size: 11 } }],
-  }), plotConfig());
+  }));
 }
 
 function renderConvergence(body, err) {
   if (!body) {
-    Plotly.react("plot-convergence", [], layout("Period error vs step h", "h (s)", "|error| (s)", {
+    plot("plot-convergence", [], layout("Period error vs step h", "h (s)", "|error| (s)", {
       annotations: [{ text: err ? err.message : "no data", showarrow: false, xref: "paper", yref: "paper", x: 0.5, y: 0.5 }],
       xaxis: { visible: false }, yaxis: { visible: false },
-    }), plotConfig());
+    }));
     return;
   }
   const rows = body.rows.filter((r) => r.estimate);
@@ -422,13 +444,13 @@ function renderConvergence(body, err) {
       line: { color: "#b8c0cc", dash: "dash", width: 1.5 }, hoverinfo: "skip" });
   }
   const h = sims.a ? sims.a.input.step : null;
-  Plotly.react("plot-convergence", traces, layout(`Period error vs step h (${body.method})`, "h (s)", "|estimate − T| (s)", {
+  plot("plot-convergence", traces, layout(`Period error vs step h (${body.method})`, "h (s)", "|estimate − T| (s)", {
     xaxis: { type: "log", title: { text: "h (s)" }, gridcolor: "#eef1f5", exponentformat: "power", automargin: true },
     yaxis: { type: "log", title: { text: "|estimate − T| (s)" }, gridcolor: "#eef1f5", exponentformat: "power", automargin: true },
     showlegend: true, margin: { l: 62, r: 12, t: 44, b: 96 },
     shapes: h ? [{ type: "line", x0: h, x1: h, yref: "paper", y0: 0, y1: 1, line: { color: COLORS.p, dash: "dot", width: 1 } }] : [],
     annotations: h ? [{ x: Math.log10(h), yref: "paper", y: 1, text: "h in use", showarrow: false, yanchor: "bottom", font: { color: COLORS.p, size: 11 } }] : [],
-  }), plotConfig());
+  }));
 }
 
 // ---------- the time cursor: animation, theta(t), error, energy and phase portrait together ----------
