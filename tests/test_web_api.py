@@ -438,16 +438,21 @@ def test_serve_help(capsys):
     assert "--port" in out and "--host" in out and "127.0.0.1" in out
 
 
-def test_serve_on_a_busy_port_is_one_line_exit_2(capsys):
+@pytest.fixture
+def busy_port():
+    """A port of 127.0.0.1 that a listening socket holds until the test ends."""
     import socket
 
     with socket.socket() as s:
         s.bind(("127.0.0.1", 0))
         s.listen()
-        port = s.getsockname()[1]
-        assert main(["serve", "--port", str(port)]) == 2
+        yield s.getsockname()[1]
+
+
+def test_serve_on_a_busy_port_is_one_line_exit_2(capsys, busy_port):
+    assert main(["serve", "--port", str(busy_port)]) == 2
     err = capsys.readouterr().err
-    assert err.count("\n") == 1 and f"127.0.0.1:{port}" in err and "Traceback" not in err
+    assert err.count("\n") == 1 and f"127.0.0.1:{busy_port}" in err and "Traceback" not in err
 
 
 @pytest.mark.parametrize("bad", ["0", "70000", "http"])
@@ -486,19 +491,15 @@ def test_csv_streams_in_blocks():
     assert np.array_equal(rows[:, 0], full.t)
 
 
-def test_serve_suggests_a_free_port_and_lists_lan_addresses(capsys, monkeypatch):
+def test_serve_suggests_a_free_port_and_lists_lan_addresses(capsys, monkeypatch, busy_port):
     import socket
 
     from pendulab.cli import serve as serve_cmd
 
-    with socket.socket() as s:
-        s.bind(("127.0.0.1", 0))
-        s.listen()
-        port = s.getsockname()[1]
-        assert main(["serve", "--port", str(port)]) == 2
-        err = capsys.readouterr().err
-        free = int(err.split("port ")[-1].split()[0])
-        assert free > port and f"pendulab serve --port {free}" in err
+    assert main(["serve", "--port", str(busy_port)]) == 2
+    err = capsys.readouterr().err
+    free = int(err.split("port ")[-1].split()[0])
+    assert free > busy_port and f"pendulab serve --port {free}" in err
     with socket.socket() as s:
         s.bind(("127.0.0.1", free))  # it was free indeed
     assert all(not a.startswith("127.") for a in serve_cmd.lan_addresses())
