@@ -1,0 +1,75 @@
+"""The kernels' sin and cos (pendulab._libm) return Python's math.sin and math.cos bit for bit.
+
+They call the C library directly instead of through numba's intrinsics (for speed), so
+the coursework's numbers depend on their being the same functions.
+"""
+import math
+
+import numpy as np
+from numba import njit
+
+from pendulab._kernels import FOUND, TAYLOR2, fill_trajectory, first_return
+from pendulab._libm import cos, sin
+
+
+@njit
+def _both(x, s, c):
+    for i in range(x.size):
+        s[i] = sin(x[i])
+        c[i] = cos(x[i])
+
+
+@njit
+def _of_int(k):
+    return sin(k), cos(k)
+
+
+def _arguments() -> np.ndarray:
+    rng = np.random.default_rng(20261127)
+    parts = [
+        rng.uniform(-math.pi, math.pi, 100_000),  # the pendulum's range
+        rng.uniform(-1e3, 1e3, 20_000),
+        np.copysign(10.0 ** rng.uniform(-320, 308, 20_000), rng.uniform(-1, 1, 20_000)),  # subnormal to huge
+        np.nextafter(np.pi / 4 * np.arange(-64, 65), np.inf),  # near the argument reduction's boundaries
+        [0.0, -0.0, 5e-324, math.pi, -math.pi, 1e22, 2.0**1000, math.inf, -math.inf, math.nan],
+    ]
+    return np.concatenate([np.asarray(p, dtype=float) for p in parts])
+
+
+def test_sin_cos_are_maths_bit_for_bit():
+    x = _arguments()
+    s, c = np.empty_like(x), np.empty_like(x)
+    with np.errstate(invalid="ignore"):
+        _both(x, s, c)
+    ref_s = np.array([math.sin(v) if math.isfinite(v) else math.nan for v in x])
+    ref_c = np.array([math.cos(v) if math.isfinite(v) else math.nan for v in x])
+    # Bit patterns: -0.0 and 0.0 differ, NaN equals NaN only where both are NaN.
+    finite = np.isfinite(x)
+    assert np.array_equal(s[finite].view(np.int64), ref_s[finite].view(np.int64))
+    assert np.array_equal(c[finite].view(np.int64), ref_c[finite].view(np.int64))
+    assert np.isnan(s[~finite]).all() and np.isnan(c[~finite]).all()
+    assert _of_int(3) == (math.sin(3), math.cos(3))
+
+
+def _taylor2_in_python(alpha, c, h, n):
+    """(3) with math.sin and math.cos, in the kernel's order of operations."""
+    z1, z2 = [alpha], [0.0]
+    for _ in range(n):
+        a, b = z1[-1], z2[-1]
+        s = math.sin(a)
+        z1.append(a + h * b + 0.5 * h * h * c * s)
+        z2.append(b + h * c * s + 0.5 * h * h * c * b * math.cos(a))
+    return np.array(z1), np.array(z2)
+
+
+def test_taylor2_kernels_equal_the_python_loop_bit_for_bit():
+    c = -9.80665 / 2.0800838231
+    for alpha, h in ((4 * math.pi / 5, 1e-3), (math.pi / 4, 0.1), (3.1, 0.01)):
+        n = 6000
+        ref1, ref2 = _taylor2_in_python(alpha, c, h, n)
+        z1, z2 = np.empty(n + 1), np.empty(n + 1)
+        fill_trajectory(TAYLOR2, 2, alpha, c, h, z1, z2)
+        assert np.array_equal(z1, ref1) and np.array_equal(z2, ref2)
+        status, j, z1w, z2w = first_return(TAYLOR2, 2, alpha, c, h, n)
+        assert status == FOUND
+        assert np.array_equal(z1w, ref1[j - 2:j + 3]) and np.array_equal(z2w, ref2[j - 2:j + 3])
