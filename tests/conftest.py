@@ -2,7 +2,6 @@
 import json
 
 import mpmath
-
 import pytest
 
 from pendulab.cli import main

@@ -38,7 +38,7 @@ HARD = np.concatenate([math.pi - np.logspace(-1, -15, 57), below_pi[1:], [1e-300
 
 def test_2000_random_pendulums_are_correctly_rounded():
     got = agm_period(RANDOM_LENGTH, RANDOM_ALPHA)
-    ref = [nearest(l, a) for l, a in zip(RANDOM_LENGTH, RANDOM_ALPHA)]
+    ref = [nearest(length, a) for length, a in zip(RANDOM_LENGTH, RANDOM_ALPHA)]
     assert np.array_equal(got, ref)
 
 
@@ -60,8 +60,8 @@ def test_double_double_value_is_within_the_error_bound():
     out, lo, hard = np.empty(alpha.size), np.empty(alpha.size), np.empty(alpha.size, np.int64)
     assert agm_periods_dd(alpha, np.array([2.5]), G, out, lo, hard)[1] == -1
     with mpmath.workdps(60):
-        worst = max(abs((mpmath.mpf(h) + mpmath.mpf(l)) / reference_period(2.5, a, dps=60) - 1)
-                    for h, l, a in zip(out, lo, alpha))
+        worst = max(abs((mpmath.mpf(h) + mpmath.mpf(low)) / reference_period(2.5, a, dps=60) - 1)
+                    for h, low, a in zip(out, lo, alpha))
     assert worst < ERROR_BOUND / 2**10
 
 
@@ -75,9 +75,9 @@ def test_half_angle_cos_is_accurate_to_double_double():
     alpha = np.concatenate([RANDOM_ALPHA[:400], HARD[:-4], edges[(edges >= 0) & (edges < math.pi)]])
     with mpmath.workdps(50):
         for a in alpha:
-            h, l = f(a)
+            h, low = f(a)
             ref = mpmath.cos(mpmath.mpf(a) / 2)
-            assert abs((mpmath.mpf(h) + mpmath.mpf(l)) / ref - 1) < 2.0**-89
+            assert abs((mpmath.mpf(h) + mpmath.mpf(low)) / ref - 1) < 2.0**-89
 
 
 def test_sin_cos_table_is_exact_to_double_double():
@@ -127,7 +127,7 @@ def test_errors_of_the_double_loop_are_gone():
     # The plain double-precision AGM is off by an ulp or more somewhere in these 2000.
     from pendulab.period import agm_mean, small_angle_period
 
-    plain = [small_angle_period(l) / agm_mean(math.cos(a / 2)) for l, a in zip(RANDOM_LENGTH, RANDOM_ALPHA)]
+    plain = [small_angle_period(length) / agm_mean(math.cos(a / 2)) for length, a in zip(RANDOM_LENGTH, RANDOM_ALPHA)]
     assert not np.array_equal(plain, agm_period(RANDOM_LENGTH, RANDOM_ALPHA))
 
 

@@ -9,8 +9,8 @@ import scipy.linalg
 
 from pendulab.errors import InputError, NumericalError
 from pendulab.lsq import least_squares, round_half_up
-from pendulab.problems import problem4
 from pendulab.period import agm_period
+from pendulab.problems import problem4
 from pendulab.taylor import simulate
 
 
@@ -30,7 +30,7 @@ def test_round_half_up_on_exact_values():
     # 1.0000015 as a double lies below the tie: its exact value decides (round(x * 1e6) gives 1.000002).
     assert Fraction(1.0000015) < Fraction("1.0000015")
     assert round_half_up(1.0000015, 6) == 1.000001
-    assert round_half_up(2.0000015, 6) == float(Decimal(2.0000015).quantize(Decimal("1e-6"), rounding="ROUND_HALF_UP"))
+    assert round_half_up(2.0000015, 6) == float(Decimal.from_float(2.0000015).quantize(Decimal("1e-6"), rounding="ROUND_HALF_UP"))
     for bad in (-1, 16, 1.5, "6"):
         with pytest.raises(InputError):
             round_half_up(1.0, bad)

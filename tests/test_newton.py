@@ -130,7 +130,7 @@ def test_other_targets_and_lengths_match_brentq():
     for length, target in [(0.5, 1.45), (0.5, 1.7), (2.0, 3.0), (1.0, 2.4)]:
         r = problem2(length, target)
         assert r.interval.holds
-        z = brentq(lambda a: f_ref(a, length, target), 1e-9, math.pi - 1e-9, xtol=1e-16)
+        z = brentq(f_ref, 1e-9, math.pi - 1e-9, args=(length, target), xtol=1e-16)
         assert r.alpha == pytest.approx(z, abs=1e-13)
 
 

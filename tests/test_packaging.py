@@ -155,7 +155,7 @@ def test_chromium_named_by_the_environment(monkeypatch, tmp_path):
     monkeypatch.setenv("PENDULAB_CHROMIUM", chosen)
     assert find_chromium() == chosen
     monkeypatch.setenv("PENDULAB_CHROMIUM", str(tmp_path / "missing"))
-    with pytest.raises(LookupError, match="PENDULAB_CHROMIUM = .*missing is not an executable file"):
+    with pytest.raises(LookupError, match=r"PENDULAB_CHROMIUM = .*missing is not an executable file"):
         find_chromium()
 
 

@@ -4,6 +4,8 @@ import math
 import mpmath
 import numpy as np
 import pytest
+from hypothesis import given, settings
+from hypothesis import strategies as st
 
 from conftest import reference_period
 from pendulab.errors import InputError
@@ -141,10 +143,6 @@ def test_bad_input_names_the_argument(kwargs, name):
         agm_period(**kwargs)
     assert err.value.name == name
     assert name in str(err.value)
-
-
-from hypothesis import given, settings
-from hypothesis import strategies as st
 
 
 @settings(max_examples=200, deadline=None)

@@ -11,7 +11,14 @@ from pendulab.errors import InputError
 from pendulab.period import agm_period, period_mp
 from pendulab.problems import problem5
 from pendulab.quadrature import (
-    GAUSS3, Rule, composite, composite_graded, period_integrand, period_prefactor, quadrature_period, substituted_integrand,
+    GAUSS3,
+    Rule,
+    composite,
+    composite_graded,
+    period_integrand,
+    period_prefactor,
+    quadrature_period,
+    substituted_integrand,
 )
 
 L, ALPHA = 3.5, 4 * math.pi / 5  # problem 5
@@ -85,7 +92,7 @@ def test_singular_rate_is_one_half():
 def test_integral_against_scipy_quad_alg_weight():
     # (alpha - theta)^(-1/2) is taken by QUADPACK's algebraic weight; the rest is smooth.
     smooth = lambda th: math.sqrt((ALPHA - th) / (math.cos(th) - math.cos(ALPHA))) if th < ALPHA else 1 / math.sqrt(math.sin(ALPHA))  # noqa: E731
-    val, err = quad(smooth, 0.0, ALPHA, weight="alg", wvar=(0.0, -0.5))
+    val, _ = quad(smooth, 0.0, ALPHA, weight="alg", wvar=(0.0, -0.5))
     t_quad = period_prefactor(L, 9.80665) * val
     assert t_quad == pytest.approx(float(period_mp(L, ALPHA)), rel=1e-12)
     assert t_quad == pytest.approx(agm_period(L, ALPHA, iterations=7), rel=1e-12)

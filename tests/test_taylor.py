@@ -78,13 +78,13 @@ def test_global_error_is_second_order_against_scipy():
     # Reference trajectory: scipy's DOP853 at tight tolerance (an independent integrator).
     from scipy.integrate import solve_ivp
 
-    l, alpha, g = 3.5, math.pi / 4, 9.80665
-    sol = solve_ivp(lambda t, y: [y[1], -g / l * math.sin(y[0])], (0, 4), [alpha, 0.0],
+    length, alpha, g = 3.5, math.pi / 4, 9.80665
+    sol = solve_ivp(lambda t, y: [y[1], -g / length * math.sin(y[0])], (0, 4), [alpha, 0.0],
                     method="DOP853", rtol=1e-13, atol=1e-13, dense_output=True)
     steps = [0.02, 0.01, 0.005, 0.0025]
     errors = []
     for h in steps:
-        tr = simulate(l, alpha, h, 4.0)
+        tr = simulate(length, alpha, h, 4.0)
         errors.append(np.max(np.abs(tr.theta - sol.sol(tr.t)[0])))
     slope = np.polyfit(np.log(steps), np.log(errors), 1)[0]
     assert abs(slope - 2) < 0.1

@@ -24,12 +24,12 @@ def test_g_against_mpmath():
 def test_first_order_bound_against_uncertainties_derivatives():
     # uncertainties differentiates g = 4 pi^2 l / T^2 itself; the first-order bound is
     # sum |dg/dx| dx (it would report the quadrature sum as std_dev, a different quantity).
-    l, t = ufloat(L, DL), ufloat(T, DT)
-    g = 4 * math.pi**2 * l / t**2
-    bound = abs(g.derivatives[l]) * DL + abs(g.derivatives[t]) * DT
+    length, t = ufloat(L, DL), ufloat(T, DT)
+    g = 4 * math.pi**2 * length / t**2
+    bound = abs(g.derivatives[length]) * DL + abs(g.derivatives[t]) * DT
     r = gravity_estimate(L, DL, T, DT)
     assert r.abs_error == pytest.approx(bound, rel=1e-12)
-    assert r.dg_dl == pytest.approx(g.derivatives[l], rel=1e-12)
+    assert r.dg_dl == pytest.approx(g.derivatives[length], rel=1e-12)
     assert r.dg_dT == pytest.approx(g.derivatives[t], rel=1e-12)
     assert r.rel_error == pytest.approx(bound / g.nominal_value, rel=1e-12)
     assert r.g == pytest.approx(g.nominal_value, rel=1e-15)

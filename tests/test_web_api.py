@@ -7,19 +7,18 @@ mpmath's complete elliptic integral at 30 digits, ``T = 4 sqrt(l/g) K(sin^2(alph
 from __future__ import annotations
 
 import math
+from dataclasses import replace
 from pathlib import Path
 
 import numpy as np
 import pytest
 from fastapi.testclient import TestClient
 
-from dataclasses import replace
-
+from conftest import ellipk_period
 from pendulab import methods, taylor
 from pendulab.cli import main
 from pendulab.crossing import estimate_period
 from pendulab.web import api, create_app
-from conftest import ellipk_period
 
 
 @pytest.fixture(scope="module")
