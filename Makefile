@@ -21,7 +21,7 @@ test: $(VENV)/.installed-test browser
 
 # ruff and mypy, configured in pyproject.toml (the tests run them too: tests/test_lint.py).
 lint: $(VENV)/.installed-test
-	$(BIN)/ruff check src
+	$(BIN)/ruff check src tests benchmarks
 	$(BIN)/mypy
 
 # The API reference and the narrative pages, into docs/_build/html (warnings are errors).

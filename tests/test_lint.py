@@ -1,4 +1,4 @@
-"""ruff and mypy, as configured in pyproject.toml, are clean on src/ (``make test`` runs this)."""
+"""ruff (src/, tests/, benchmarks/) and mypy (src/), as configured in pyproject.toml, are clean (``make test`` runs this)."""
 import os
 import subprocess
 import sys
@@ -9,7 +9,7 @@ import pytest
 ROOT = Path(__file__).resolve().parents[1]
 
 
-@pytest.mark.parametrize("tool", [["ruff", "check", "src"], ["mypy"]], ids=["ruff", "mypy"])
+@pytest.mark.parametrize("tool", [["ruff", "check", "src", "tests", "benchmarks"], ["mypy"]], ids=["ruff", "mypy"])
 def test_clean(tool):
     env = dict(os.environ, MYPY_CACHE_DIR=str(ROOT / ".mypy_cache"))
     res = subprocess.run([sys.executable, "-m", *tool], cwd=ROOT, capture_output=True, text=True, env=env, timeout=600)
