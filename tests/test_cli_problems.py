@@ -5,7 +5,7 @@ import sys
 
 import pytest
 
-from conftest import assert_one_line_error
+from conftest import assert_one_line_error, reference_period
 from pendulab.period import agm_period
 from pendulab.problems import problem1, problem2
 
@@ -72,6 +72,38 @@ def test_quadrature_json(cli):
     sub = cli("quadrature", "--n", "10,100", "--substitution", "--json").json
     assert sub["rows"][1]["substitution_error"] < 1e-13
     assert "5(a)" in cli("quadrature", "--n", "1e1,1e2", "--substitution").out
+
+
+def test_quadrature_near_pi_says_t_hat_is_off_and_measures_the_substitution_against_t(cli):
+    # pi - 1e-15: 7 iterations of (7) have not converged. Reference: mpmath's elliptic K at
+    # 60 digits from the amplitude's exact double, rounded to a double.
+    alpha = math.pi - 1e-15
+    ref = float(reference_period(3.5, alpha, dps=60))
+    args = ("quadrature", "-l", "3.5", "-a", repr(alpha), "--n", "100,3000", "--graded")
+    data = cli(*args, "--json").json
+    assert data["correctly_rounded"] == ref
+    ulps = (data["exact"] - ref) / math.ulp(ref)
+    assert abs(ulps) > 4 and data["t_hat_ulps"] == round(ulps)
+    assert data["t_hat_note"] and f"{data['t_hat_ulps']:+d} ulp" in data["t_hat_note"]
+    assert data["substitution_reference"] == "correctly_rounded"
+    for row in data["rows"]:
+        assert row["error"] == abs(row["period"] - data["exact"])  # the plain column: against (8)
+        assert row["substitution_error"] == abs(row["substitution_period"] - ref)
+    assert data["rows"][1]["substitution_error"] < 64 * 2.0**-52 * ref  # the rule is at rounding level
+    lines = cli(*args).out.splitlines()
+    assert lines[1] == data["t_hat_note"]
+    assert lines[2].rstrip().endswith(" |S_n - T|") and lines[2].count("|S_n - T^|") == 1
+
+
+def test_quadrature_at_4pi_5_has_no_note(cli):
+    # 4pi/5: T^ (8) is within the loop's rounding of the period; both columns against T^.
+    data = cli("quadrature", "--n", "10,100", "--substitution", "--json").json
+    assert data["t_hat_note"] is None and abs(data["t_hat_ulps"]) <= 4
+    assert data["substitution_reference"] == "exact"
+    assert all(r["substitution_error"] == abs(r["substitution_period"] - data["exact"]) for r in data["rows"])
+    lines = cli("quadrature", "--n", "10,100", "--substitution").out.splitlines()
+    assert len(lines) == 1 + 1 + 2 + 2  # T^, the header, two rows, 5(a) and the rate
+    assert lines[1].count("|S_n - T^|") == 2
 
 
 @pytest.mark.parametrize("gap", ["1e-6", "1e-9", "1e-12", "1e-15"])

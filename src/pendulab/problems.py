@@ -14,7 +14,7 @@ from . import cases
 from .crossing import PeriodEstimate, estimate_period, observed_orders
 from .errors import NumericalError
 from .group import GroupLength, group_length
-from .period import agm_period
+from .period import FIXED_ITERATIONS_ULPS, agm_period
 from .results import Result
 from .taylor import Trajectory, simulate
 
@@ -504,7 +504,13 @@ class Problem5(Result):
     length, amplitude, g : float
         ``l = 3.5``, ``alpha = 4 pi/5``.
     t_hat : float
-        ``T^`` of (8), 7 iterations: the reference of the errors (``exact`` is an alias).
+        ``T^`` of (8), 7 iterations: the reference of the plain errors (``exact`` is an alias),
+        and of the substituted ones while it is within rounding of :attr:`correctly_rounded`.
+    correctly_rounded : float
+        The period to convergence, correctly rounded (:func:`~pendulab.period.agm_period`):
+        the substituted errors' reference where ``T^`` is more than
+        ``FIXED_ITERATIONS_ULPS`` from it (within about 3e-14 of pi, where 7 iterations
+        have not converged and ``T^`` is up to hundreds of ulp off).
     rule : Rule
         Rule (11) (3-point Gauss-Legendre, checked: weights sum 2, degree 5).
     single : float
@@ -525,6 +531,7 @@ class Problem5(Result):
     amplitude: float
     g: float
     t_hat: float
+    correctly_rounded: float
     rule: Rule
     single: float
     composite10: float
@@ -537,6 +544,31 @@ class Problem5(Result):
     def exact(self) -> float:
         """``T^``, by the coursework's word: :attr:`t_hat` (see the glossary of "exact")."""
         return self.t_hat
+
+    @property
+    def t_hat_ulps(self) -> int:
+        """``T^ - T`` in ulps of the correctly rounded ``T``."""
+        return round((self.t_hat - self.correctly_rounded) / math.ulp(self.correctly_rounded))
+
+    @property
+    def t_hat_converged(self) -> bool:
+        """``T^`` is within the rounding of the double loop (``FIXED_ITERATIONS_ULPS``) of ``T``."""
+        return abs(self.t_hat_ulps) <= FIXED_ITERATIONS_ULPS
+
+    @property
+    def substitution_reference(self) -> float:
+        """The substituted errors' reference: ``T^`` (8) where it has converged, else ``T``."""
+        return self.t_hat if self.t_hat_converged else self.correctly_rounded
+
+    @property
+    def t_hat_note(self) -> str | None:
+        """One line where ``T^`` (8) is not the period to double precision, else None."""
+        if self.t_hat_converged:
+            return None
+        return (f"T^ (8) differs from the correctly rounded period T = {self.correctly_rounded!r} s by "
+                f"{self.t_hat - self.correctly_rounded:+.3e} s ({self.t_hat_ulps:+d} ulp, more than the "
+                f"{FIXED_ITERATIONS_ULPS} ulp of rounding): 7 iterations of (7) have not converged this close to pi, "
+                "so errors against T^ include T^'s own")
 
     @property
     def answer_5a(self) -> str:
@@ -570,7 +602,12 @@ def problem5(
     from .quadrature import GAUSS3, convergence_table, quadrature_period
 
     exact = agm_period(length, amplitude, g, iterations=7)
-    rows = convergence_table(length, amplitude, ns, exact, g, substitution=substitution, graded=graded)
+    rounded = agm_period(length, amplitude, g)
+    # The substituted rule reaches the rounding level: against a T^ that has not converged
+    # (near pi) its error would be T^'s, so it is measured against the true period there.
+    sub_exact = exact if abs(exact - rounded) <= FIXED_ITERATIONS_ULPS * math.ulp(rounded) else rounded
+    rows = convergence_table(length, amplitude, ns, exact, g, substitution=substitution, graded=graded,
+                             substitution_exact=sub_exact)
     floor = ROUNDING_FLOOR * abs(exact)
     converged = next((row.n for row in rows if row.substitution_error is not None
                       and row.substitution_error <= floor), None)
@@ -579,6 +616,7 @@ def problem5(
         amplitude=float(amplitude),
         g=float(g),
         t_hat=exact,
+        correctly_rounded=rounded,
         rule=GAUSS3,
         single=quadrature_period(length, amplitude, 1, g),
         composite10=quadrature_period(length, amplitude, 10, g),

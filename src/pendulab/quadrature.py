@@ -325,11 +325,12 @@ def observed_rates(ns, errors, floor: float) -> list[float | None]:
 
 
 def convergence_table(length, amplitude, ns, exact: float, g=G, substitution: bool = False,
-                      graded: bool = False) -> list[QuadratureRow]:
+                      graded: bool = False, substitution_exact: float | None = None) -> list[QuadratureRow]:
     """The table of 5(d): ``n``, period, ``|error|`` against ``exact`` and observed rate.
 
     ``graded`` (with ``substitution``): the substituted columns on graded panels
-    (see :func:`quadrature_period`).
+    (see :func:`quadrature_period`). ``substitution_exact``: the substituted columns'
+    reference, when not ``exact`` (near pi, where ``T^`` of (8) is not the true period).
     """
     if graded and not substitution:
         raise InputError("graded", graded, "False without the substitution (the graded panels are for its peak)")
@@ -348,8 +349,10 @@ def convergence_table(length, amplitude, ns, exact: float, g=G, substitution: bo
     sr: list[float | None]
     if substitution:
         sub_periods = [quadrature_period(length, amplitude, n, g, substitution=True, graded=graded) for n in ns]
-        sub_errors = [abs(p - exact) for p in sub_periods]
-        sp, se, sr = list(sub_periods), list(sub_errors), observed_rates(ns, sub_errors, floor)
+        sub_exact = exact if substitution_exact is None else substitution_exact
+        sub_errors = [abs(p - sub_exact) for p in sub_periods]
+        sub_floor = 64 * np.finfo(float).eps * abs(sub_exact)
+        sp, se, sr = list(sub_periods), list(sub_errors), observed_rates(ns, sub_errors, sub_floor)
     else:
         sp = se = sr = [None] * len(ns)
     return [QuadratureRow(*row) for row in zip(ns, periods, errors, rates, sp, se, sr)]

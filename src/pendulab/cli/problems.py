@@ -239,14 +239,21 @@ def quadrature(length, amplitude, ns, substitution, graded, g, as_json):
                 d |= {"substitution_period": row.substitution_period, "substitution_error": row.substitution_error,
                       "substitution_rate": row.substitution_rate}
             rows.append(d)
+        # t_hat_note: one line where T^ (8) is not the period to double precision, else null.
+        extra = {"substitution_reference": "exact" if r.t_hat_converged else "correctly_rounded"} if substitution else {}
         emit_json({"length": r.length, "amplitude": r.amplitude, "g": r.g, "exact": r.exact,
-                   "single": r.single, "composite10": r.composite10, "graded": graded, "rows": rows,
+                   "correctly_rounded": r.correctly_rounded, "t_hat_ulps": r.t_hat_ulps, "t_hat_note": r.t_hat_note,
+                   **extra, "single": r.single, "composite10": r.composite10, "graded": graded, "rows": rows,
                    "answer_5a": answer_5a, "rate_explanation": rate_text})
         return
-    click.echo(f"l = {r.length!r}, alpha = {r.amplitude!r}; exact T (8) = {r.exact!r} s")
-    head = f"{'n':>10} {'T ~ S_n':>20} {'|error|':>11} {'rate':>6}"
+    click.echo(f"l = {r.length!r}, alpha = {r.amplitude!r}; exact T^ (8) = {r.exact!r} s")
+    if r.t_hat_note:
+        click.echo(r.t_hat_note)
+    # Each error column names its reference: T^ of (8), or T, the correctly rounded period.
+    head = f"{'n':>10} {'T ~ S_n':>20} {'|S_n - T^|':>11} {'rate':>6}"
     if substitution:
-        head += f" {'T ~ S_n (graded)' if graded else 'T ~ S_n (subst.)':>20} {'|error|':>11}"
+        head += f" {'T ~ S_n (graded)' if graded else 'T ~ S_n (subst.)':>20} "
+        head += f"{'|S_n - T^|' if r.t_hat_converged else '|S_n - T|':>11}"
     click.echo(head)
     for row in r.rows:
         rate = f"{row.rate:6.3f}" if row.rate is not None else f"{'':>6}"
