@@ -435,3 +435,47 @@ def test_api_docs_work_offline(page, server):
     page.wait_for_selector(".swagger-ui .opblock", timeout=30_000)
     assert page.locator(".opblock-summary-path", has_text="/api/simulate").count() == 1
     assert page.outside == [] and page.errors == []
+
+
+#: Each plot's box, its legend's box and the boxes of its axes' tick labels (left, top, right, bottom).
+PLOT_PARTS = """() => [...document.querySelectorAll('.js-plotly-plot')].map(gd => {
+  const box = (e) => { const r = e.getBoundingClientRect(); return [r.left, r.top, r.right, r.bottom]; };
+  const ticks = (cls) => [...gd.querySelectorAll(`.${cls} text`)]
+    .filter(t => t.textContent && t.getBoundingClientRect().width).map(t => [t.textContent, box(t)]);
+  const legend = gd.querySelector('.legend');
+  return {id: gd.id, box: box(gd), legend: legend && legend.getBoundingClientRect().width ? box(legend) : null,
+          xticks: ticks('xtick'), yticks: ticks('ytick')};
+})"""
+
+
+@pytest.mark.parametrize("width, height", VIEWPORTS)
+@pytest.mark.parametrize("url", ["/", LONG_RUN + "&method2=verlet"])
+def test_legends_and_tick_labels_stay_readable(browser, server, width, height, url):
+    # At 390 and 1024 px the phase portrait's legend ("... (13 stretches of one period, 0 to
+    # 1999.998 s)") ran past the plot's right edge, cut off; at 1024 px the convergence plot's
+    # log axes labelled 2 and 5 between the decades, "10^-4" and "2" reading as "10^-42".
+    context, pg = open_page(browser, server, url, width, height)
+    try:
+        pg.wait_for_function("document.querySelectorAll('.js-plotly-plot').length == 6 && "
+                             "document.querySelector('#plot-convergence .xtick')", timeout=60_000)
+        plots = pg.evaluate(PLOT_PARTS)
+        assert len(plots) == 6
+        legends = 0
+        for p in plots:
+            if p["legend"]:
+                legends += 1
+                left, top, right, bottom = p["box"]
+                lg = p["legend"]
+                assert left <= lg[0] and lg[2] <= right and top <= lg[1] and lg[3] <= bottom, p
+            for axis, gap in (("xticks", 4), ("yticks", 1)):
+                labels = p[axis]
+                for i, (text_a, a) in enumerate(labels):
+                    for text_b, b in labels[i + 1:]:
+                        # Apart by `gap` pixels: labels closer than that read as one.
+                        near = [a[0] - gap, a[1] - gap, a[2] + gap, a[3] + gap]
+                        assert not overlap(near, b), (p["id"], axis, text_a, text_b, a, b)
+        assert legends >= (2 if "method2" in url else 1)
+        assert pg.errors == []
+    finally:
+        context.close()
+

@@ -341,7 +341,8 @@ function renderTheta() {
 function renderPhase() {
   const s = sims.a;
   const a = s.input.amplitude;
-  const orbits = (x) => (x.phase.orbits > 1 ? ` (${x.phase.orbits} stretches of one period, 0 to ${short(x.phase.t_last)} s)` : "");
+  // On a second line: a legend entry wider than the plot is cut off at its right (a phone, 1024 px).
+  const orbits = (x) => (x.phase.orbits > 1 ? `<br>${x.phase.orbits} one-period stretches, 0 to ${short(x.phase.t_last)} s` : "");
   const traces = [
     { x: s.phase.theta, y: s.phase.omega, mode: "lines", connectgaps: false, line: { color: COLORS.a, width: 1.6 },
       name: label(s) + orbits(s), hovertemplate: "θ = %{x:.5f} rad<br>θ′ = %{y:.5f} rad/s<extra></extra>" },
@@ -444,13 +445,29 @@ function renderConvergence(body, err) {
       line: { color: "#b8c0cc", dash: "dash", width: 1.5 }, hoverinfo: "skip" });
   }
   const h = sims.a ? sims.a.input.step : null;
+  const gd = $("plot-convergence");
+  const xs = traces.flatMap((t) => t.x).concat(h ? [h] : []), ys = traces.flatMap((t) => t.y);
   plot("plot-convergence", traces, layout(`Period error vs step h (${body.method})`, "h (s)", "|estimate − T| (s)", {
-    xaxis: { type: "log", title: { text: "h (s)" }, gridcolor: "#eef1f5", exponentformat: "power", automargin: true },
-    yaxis: { type: "log", title: { text: "|estimate − T| (s)" }, gridcolor: "#eef1f5", exponentformat: "power", automargin: true },
+    xaxis: { type: "log", title: { text: "h (s)" }, gridcolor: "#eef1f5", exponentformat: "power", automargin: true,
+      ...logTicks(xs, gd.clientWidth - 90, 56) },
+    yaxis: { type: "log", title: { text: "|estimate − T| (s)" }, gridcolor: "#eef1f5", exponentformat: "power", automargin: true,
+      ...logTicks(ys, gd.clientHeight - 160, 26) },
     showlegend: true, margin: { l: 62, r: 12, t: 44, b: 96 },
     shapes: h ? [{ type: "line", x0: h, x1: h, yref: "paper", y0: 0, y1: 1, line: { color: COLORS.p, dash: "dot", width: 1 } }] : [],
     annotations: h ? [{ x: Math.log10(h), yref: "paper", y: 1, text: "h in use", showarrow: false, yanchor: "bottom", font: { color: COLORS.p, size: 11 } }] : [],
   }));
+}
+
+// Labels on a log axis: plotly's own choice labels 2 and 5 between the decades, and on a
+// narrow plot "5" runs into "10⁻³" ("10⁻⁴" then "2" reads as "10⁻⁴²"). Here: decades only,
+// every k-th where the axis is too short for each one to have `room` pixels; 1, 2, 5 only
+// over less than two decades, where there is room for them.
+function logTicks(values, length, room) {
+  const v = values.filter((x) => x > 0);
+  if (!v.length) return {};
+  const decades = Math.log10(Math.max(...v) / Math.min(...v)) + 0.5;  // plotly pads the range
+  if (decades < 2) return { dtick: "D2" };
+  return { dtick: Math.max(1, Math.ceil(decades / Math.max(1, Math.floor(length / room)))) };
 }
 
 // ---------- the time cursor: animation, theta(t), error, energy and phase portrait together ----------
