@@ -479,3 +479,28 @@ def test_legends_and_tick_labels_stay_readable(browser, server, width, height, u
     finally:
         context.close()
 
+
+@pytest.mark.parametrize("width, height", VIEWPORTS)
+def test_the_controls_come_first(browser, server, width, height):
+    # At 1024 px the controls were a narrow sticky column beside the results: scrolled, it sat
+    # beside the Period card halfway down, an empty column above and below it.
+    context, pg = open_page(browser, server, "/", width, height)
+    try:
+        pg.evaluate("window.scrollTo(0, document.body.scrollHeight)")
+        pg.wait_for_timeout(200)
+        pg.evaluate("window.scrollTo(0, 0)")
+        box = pg.evaluate("""() => Object.fromEntries(['inputs', 'animation', 'periods', 'results'].map(id => {
+            const r = document.getElementById(id).getBoundingClientRect();
+            return [id, [r.left, r.top + scrollY, r.right, r.bottom + scrollY]]; }))""")
+        form, results = box["inputs"], box["results"]
+        if width > 1100:  # a sidebar: to the left of the results, from their top
+            assert form[2] <= results[0] and form[1] <= results[1] + 1
+        else:  # above the results, the width of the page, and all of it shown (nothing to scroll inside)
+            assert form[3] <= results[1] and form[3] <= box["animation"][1]
+            assert form[2] - form[0] >= results[2] - results[0] - 1
+            assert pg.evaluate("(() => { const f = document.getElementById('inputs'); return f.scrollHeight <= f.clientHeight + 1; })()")
+        # The swing comes before the period, which comes before the plots.
+        assert box["animation"][1] <= box["periods"][1]
+        assert pg.errors == []
+    finally:
+        context.close()

@@ -451,7 +451,7 @@ function renderConvergence(body, err) {
     xaxis: { type: "log", title: { text: "h (s)" }, gridcolor: "#eef1f5", exponentformat: "power", automargin: true,
       ...logTicks(xs, gd.clientWidth - 90, 56) },
     yaxis: { type: "log", title: { text: "|estimate − T| (s)" }, gridcolor: "#eef1f5", exponentformat: "power", automargin: true,
-      ...logTicks(ys, gd.clientHeight - 160, 26) },
+      ...logTicks(ys, gd.clientHeight - 160, 30) },
     showlegend: true, margin: { l: 62, r: 12, t: 44, b: 96 },
     shapes: h ? [{ type: "line", x0: h, x1: h, yref: "paper", y0: 0, y1: 1, line: { color: COLORS.p, dash: "dot", width: 1 } }] : [],
     annotations: h ? [{ x: Math.log10(h), yref: "paper", y: 1, text: "h in use", showarrow: false, yanchor: "bottom", font: { color: COLORS.p, size: 11 } }] : [],
