@@ -548,7 +548,7 @@ class Problem5(Result):
     @property
     def t_hat_ulps(self) -> int:
         """``T^ - T`` in ulps of the correctly rounded ``T``."""
-        return round((self.t_hat - self.correctly_rounded) / math.ulp(self.correctly_rounded))
+        return _ulps_from(self.t_hat, self.correctly_rounded)
 
     @property
     def t_hat_converged(self) -> bool:
@@ -586,6 +586,11 @@ class Problem5(Result):
         return sentence("p5.rate", observed="none (fewer than two n, or an error at rounding level)" if last is None else f"{last:.3f}")
 
 
+def _ulps_from(t_hat: float, rounded: float) -> int:
+    """``t_hat - rounded`` in ulps of ``rounded``: one rule for problem 5's note and its table."""
+    return round((t_hat - rounded) / math.ulp(rounded))
+
+
 def problem5(
     length: float = cases.PROBLEM5.l,
     amplitude: float = cases.PROBLEM5.alpha,
@@ -605,7 +610,7 @@ def problem5(
     rounded = agm_period(length, amplitude, g)
     # The substituted rule reaches the rounding level: against a T^ that has not converged
     # (near pi) its error would be T^'s, so it is measured against the true period there.
-    sub_exact = exact if abs(exact - rounded) <= FIXED_ITERATIONS_ULPS * math.ulp(rounded) else rounded
+    sub_exact = exact if abs(_ulps_from(exact, rounded)) <= FIXED_ITERATIONS_ULPS else rounded
     rows = convergence_table(length, amplitude, ns, exact, g, substitution=substitution, graded=graded,
                              substitution_exact=sub_exact)
     floor = ROUNDING_FLOOR * abs(exact)
