@@ -364,14 +364,15 @@ function renderPhase() {
   }));
 }
 
+/** One line per simulation shown (a, then the comparison b), in its method's colour. */
+function methodLines(xOf, yOf, hovertemplate) {
+  return [["a", COLORS.a], ["b", COLORS.b]].filter(([k]) => sims[k]).map(([k, color]) => ({
+    x: xOf(sims[k]), y: yOf(sims[k]), mode: "lines", line: { color, width: 1.4 }, name: label(sims[k]), hovertemplate,
+  }));
+}
+
 function renderError() {
-  const traces = [];
-  for (const [k, color] of [["a", COLORS.a], ["b", COLORS.b]]) {
-    const s = sims[k];
-    if (!s) continue;
-    traces.push({ x: s.error.t, y: s.error.theta, mode: "lines", line: { color, width: 1.4 }, name: label(s),
-      hovertemplate: "t = %{x:.4f} s<br>θ − θ_exact = %{y:.3e} rad<extra></extra>" });
-  }
+  const traces = methodLines((s) => s.error.t, (s) => s.error.theta, "t = %{x:.4f} s<br>θ − θ_exact = %{y:.3e} rad<extra></extra>");
   const per = sims.a.error.per_period;
   plot("plot-error", traces, layout("Global error θ_sim − θ_exact", `t (s): ${per.toPrecision(3)} samples a period`, "error (rad)", {
     shapes: [cursorShape(anim.t)], ...twoMethods(traces),
@@ -379,13 +380,7 @@ function renderError() {
 }
 
 function renderEnergy() {
-  const traces = [];
-  for (const [k, color] of [["a", COLORS.a], ["b", COLORS.b]]) {
-    const s = sims[k];
-    if (!s) continue;
-    traces.push({ x: s.energy.t, y: s.energy.drift, mode: "lines", line: { color, width: 1.4 }, name: label(s),
-      hovertemplate: "t = %{x:.4f} s<br>(E − E₀)/(mgl) = %{y:.3e}<extra></extra>" });
-  }
+  const traces = methodLines((s) => s.energy.t, (s) => s.energy.drift, "t = %{x:.4f} s<br>(E − E₀)/(mgl) = %{y:.3e}<extra></extra>");
   plot("plot-energy", traces, layout("Energy drift (E − E₀)/(m g l)", "t (s)", "drift", {
     shapes: [cursorShape(anim.t)], ...twoMethods(traces),
   }));
