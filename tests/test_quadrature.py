@@ -208,6 +208,21 @@ def test_convergence_plot_draws_the_table():
         plt.close(fig)
 
 
+@pytest.mark.parametrize("alpha", [ALPHA, math.pi - 1e-15])
+def test_substituted_errors_are_measured_against_the_stated_reference(alpha):
+    # T^ (7 iterations) has converged at the example, not within 1e-15 of pi; the table's
+    # substituted errors and the stated reference must name the same period.
+    r = problem5(L, alpha, ns=(10, 100))
+    with mpmath.workdps(50):  # (8) to convergence, in mpmath, g the double 9.80665 as the code takes it
+        a = mpmath.mpf(alpha)
+        true = float(2 * mpmath.pi * mpmath.sqrt(mpmath.mpf(L) / mpmath.mpf(9.80665)) / mpmath.agm(1, mpmath.cos(a / 2)))
+    assert r.substitution_reference == (r.t_hat if r.t_hat_converged else r.correctly_rounded)
+    assert (r.substitution_reference == r.t_hat) == (alpha == ALPHA)
+    for row in r.rows:
+        assert row.substitution_error == abs(row.substitution_period - r.substitution_reference)
+    assert abs(r.correctly_rounded - true) <= math.ulp(true) / 2
+
+
 # ------------------------------------------------------------------ the edges: tiny amplitudes, near pi
 def s_n_sin_form_mp(alpha: float, n: int, length: float = 1.0, dps: int = 50):
     """S_n of rule (11) on [0, alpha] with the integrand 1/sqrt(2 sin((a+t)/2) sin((a-t)/2)),

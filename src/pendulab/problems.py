@@ -558,7 +558,7 @@ class Problem5(Result):
     @property
     def substitution_reference(self) -> float:
         """The substituted errors' reference: ``T^`` (8) where it has converged, else ``T``."""
-        return self.t_hat if self.t_hat_converged else self.correctly_rounded
+        return _substitution_reference(self.t_hat, self.correctly_rounded)
 
     @property
     def t_hat_note(self) -> str | None:
@@ -591,6 +591,15 @@ def _ulps_from(t_hat: float, rounded: float) -> int:
     return round((t_hat - rounded) / math.ulp(rounded))
 
 
+def _substitution_reference(t_hat: float, rounded: float) -> float:
+    """``t_hat`` within the rounding of the double loop of ``rounded``, else ``rounded``.
+
+    The substituted rule reaches the rounding level: against a ``T^`` that has not converged
+    (near pi) its error would be ``T^``'s, so it is measured against the true period there.
+    """
+    return t_hat if abs(_ulps_from(t_hat, rounded)) <= FIXED_ITERATIONS_ULPS else rounded
+
+
 def problem5(
     length: float = cases.PROBLEM5.l,
     amplitude: float = cases.PROBLEM5.alpha,
@@ -608,11 +617,8 @@ def problem5(
 
     exact = agm_period(length, amplitude, g, iterations=7)
     rounded = agm_period(length, amplitude, g)
-    # The substituted rule reaches the rounding level: against a T^ that has not converged
-    # (near pi) its error would be T^'s, so it is measured against the true period there.
-    sub_exact = exact if abs(_ulps_from(exact, rounded)) <= FIXED_ITERATIONS_ULPS else rounded
     rows = convergence_table(length, amplitude, ns, exact, g, substitution=substitution, graded=graded,
-                             substitution_exact=sub_exact)
+                             substitution_exact=_substitution_reference(exact, rounded))
     floor = ROUNDING_FLOOR * abs(exact)
     converged = next((row.n for row in rows if row.substitution_error is not None
                       and row.substitution_error <= floor), None)
