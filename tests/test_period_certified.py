@@ -12,6 +12,8 @@ from fractions import Fraction
 import mpmath
 import pytest
 from flint import arb, ctx
+from hypothesis import given, settings
+from hypothesis import strategies as st
 
 from conftest import assert_one_line_error
 from pendulab.errors import InputError
@@ -113,6 +115,35 @@ def test_many_digits_agree_with_mpmath():
         assert got == mpmath.nstr(ref, 3000, strip_zeros=False)
 
 
+def test_more_digits_than_python_prints_an_int(cli):
+    # str() refuses integers of more than 4300 digits (sys.get_int_max_str_digits()): the
+    # CLI's largest --digits crashed with a traceback.
+    got = period_digits("3.5", "4pi/5", digits=5000)
+    ref = ref_period("3.5", Fraction(4, 5), True, dps=5100)
+    with mpmath.workdps(5100):
+        assert got == mpmath.nstr(ref, 5000, strip_zeros=False)
+    res = cli("period", "-l", "3.5", "-a", "4pi/5", "--digits", "10000")
+    assert res.code == 0, res.err
+    line = next(x for x in res.out.splitlines() if x.startswith("period, AGM"))
+    assert len(line.split("=")[1].strip().removesuffix(" s").replace(".", "")) == 10000
+
+
+@settings(max_examples=200, deadline=None)
+@given(n=st.integers(0, 10**12000))
+def test_int_text_prints_any_length(n):
+    import sys
+
+    from pendulab.period import _int_text
+
+    limit = sys.get_int_max_str_digits()
+    sys.set_int_max_str_digits(0)  # the reference: str() without the limit
+    try:
+        expected = str(n)
+    finally:
+        sys.set_int_max_str_digits(limit)
+    assert _int_text(n) == expected
+
+
 def test_cli_period_digits_near_pi(cli):
     res = cli("period", "-l", "1", "-a", "0.99999999999999pi", "--digits", "30")
     assert res.code == 0, res.err
@@ -122,8 +153,6 @@ def test_cli_period_digits_near_pi(cli):
     assert_one_line_error(cli("period", "-l", "1", "-a", "1pi", "--digits", "5"), "amplitude")
 
 
-from hypothesis import given, settings  # noqa: E402
-from hypothesis import strategies as st  # noqa: E402
 
 
 @settings(max_examples=60, deadline=None)

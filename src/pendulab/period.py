@@ -369,11 +369,24 @@ def _round_significant(x: Fraction, digits: int) -> tuple[int, int]:
             return n, e
 
 
+def _int_text(n: int) -> str:
+    """``str(n)`` for an ``n >= 0`` of any length: ``str`` refuses integers of more than
+    ``sys.get_int_max_str_digits()`` digits (4300 by default), so longer ones go in blocks."""
+    block = 10**1000
+    if n < block:
+        return str(n)
+    parts = []
+    while n >= block:
+        n, low = divmod(n, block)
+        parts.append(f"{low:01000d}")
+    return str(n) + "".join(reversed(parts))
+
+
 def _decimal_text(n: int, e: int, digits: int) -> str:
     """The decimal ``n 10^e`` (``n`` of ``digits`` digits) as text, in the layout of
     ``mpmath.nstr(x, digits, strip_zeros=False)``: fixed point while the leading digit's
     exponent ``p`` satisfies ``min(-(digits // 3), -5) < p < digits``, else ``d.ddde+pp``."""
-    text, p = str(n), e + digits - 1
+    text, p = _int_text(n), e + digits - 1
     if not min(-(digits // 3), -5) < p < digits:
         return f"{text[0]}.{text[1:]}e{p:+}"
     if p < 0:
