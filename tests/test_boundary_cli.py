@@ -170,6 +170,25 @@ def _one_hostile_value(command, data):
 
 @settings(max_examples=40, deadline=30_000,
           suppress_health_check=[HealthCheck.function_scoped_fixture, HealthCheck.too_slow])
+def integer_ranges() -> list[tuple[str, str, int]]:
+    """(command, option, bound) for both ends of every integer option's range, read from click."""
+    ends = []
+    for command in sorted(COMMANDS):
+        for p in value_params(command):
+            bounds = re.fullmatch(r"(-?\d+)\.\.(\d+)", getattr(p.type, "name", "") or "")
+            if bounds and isinstance(p, click.Option):
+                ends += [(command, max(p.opts, key=len), int(b)) for b in bounds.groups()]
+    return ends
+
+
+@pytest.mark.parametrize("command, option, bound", integer_ranges())
+def test_both_ends_of_every_integer_range_run(sandbox, command, option, bound):
+    # --digits 10000 (the top of its range) crashed: str() of an integer of 10000 digits.
+    assert len(integer_ranges()) >= 8  # period --iterations/--digits, simulate --digits, serve --port
+    code, err = run_in_process([command, *BASE[command], option, str(bound)])
+    assert code == 0, (command, option, bound, err)
+
+
 @given(command=st.sampled_from(sorted(COMMANDS)), values=st.lists(HOSTILE, min_size=2, max_size=3))
 def test_several_hostile_values_at_once(sandbox, command, values):
     params = [p for p in value_params(command) if isinstance(p, click.Option)]
