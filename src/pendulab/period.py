@@ -125,25 +125,26 @@ def _check_amplitudes(amplitude: Any) -> Any:
 def nearest_period(length: float, amplitude: float, g: float) -> float:
     """The double nearest to the true period (8) of the doubles ``length, amplitude, g``.
 
-    ``2 pi sqrt(l)/sqrt(g) / M(1, cos(alpha/2))`` in mpmath at 128 and 192 bits, each
-    rounded once to a double (round to nearest); the precision doubles until the two
-    agree (Ziv's strategy). Independent of the compiled double-double kernel, which
-    calls it where its own rounding test fails.
+    ``2 pi sqrt(l)/sqrt(g) / M(1, cos(alpha/2))`` in mpmath at 128 bits; when both ends of
+    ``t (1 -+ 2^(16 - prec))`` round to the same double, it is the answer, else the
+    precision doubles (Ziv's strategy). mpmath's ``sqrt``, ``cos`` and ``agm`` err by a few
+    units of the last of ``prec`` bits, so the margin of 2^16 such units covers them many
+    times over. Independent of the compiled double-double kernel, which calls it where
+    its own rounding test fails.
     """
     import mpmath
     from mpmath.libmp import to_float
 
     prec = 128
     while True:
-        got = []
-        for p in (prec, prec + 64):
-            with mpmath.workprec(p):
-                m = mpmath.mpf
-                t = 2 * mpmath.pi * mpmath.sqrt(m(length)) / (mpmath.sqrt(m(g)) * mpmath.agm(1, mpmath.cos(m(amplitude) / 2)))
-                got.append(to_float(t._mpf_, rnd="n"))
-        if got[0] == got[1]:
-            return got[0]
-        prec *= 2  # pragma: no cover - a period within 2^-128 of a rounding boundary
+        with mpmath.workprec(prec):
+            m = mpmath.mpf
+            t = 2 * mpmath.pi * mpmath.sqrt(m(length)) / (mpmath.sqrt(m(g)) * mpmath.agm(1, mpmath.cos(m(amplitude) / 2)))
+            margin = mpmath.ldexp(t, 16 - prec)
+            lo, hi = to_float((t - margin)._mpf_, rnd="n"), to_float((t + margin)._mpf_, rnd="n")
+        if lo == hi:
+            return lo
+        prec *= 2  # pragma: no cover - a period within 2^-112 of a rounding boundary
 
 
 def agm_period(length: Any, amplitude: Any, g: Any = G, iterations: int | None = None) -> Any:
