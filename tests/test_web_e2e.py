@@ -315,6 +315,13 @@ def test_long_run_plots_keep_their_shape(browser, server):
         seg = np.hypot(np.diff(x) * sx, np.diff(v) * sy)
         assert np.nanmax(seg) <= 0.05 * width_px
         assert np.sum(np.isnan(seg)) >= 2  # several orbits, apart
+        # With one method there is no legend: the title names the orbits and their time span.
+        answer = pg.evaluate("fetch('/api/simulate' + location.search + '&points=3000').then(r => r.json())")
+        title = pg.evaluate("document.getElementById('plot-phase').layout.title.text")
+        phase = answer["phase"]
+        assert phase["orbits"] == np.sum(np.isnan(x)) + 1 > 2
+        assert title == f"Phase portrait: {phase['orbits']} periods sampled, 0 to {phase['t_last']:.12g} s"
+        assert phase["t_last"] > 0.9 * 2000
         assert pg.errors == []
     finally:
         context.close()

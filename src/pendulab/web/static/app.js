@@ -357,7 +357,8 @@ function renderPhase() {
   traces.push({ x: [st ? st.theta : null], y: [st ? st.omega : null], mode: "markers", marker: { color: COLORS.cursor, size: 9 },
     name: "now", showlegend: false, hoverinfo: "skip" });
   anim.phaseCursor = traces.length - 1;
-  const title = s.phase.orbits > 1 ? `Phase portrait: ${s.phase.orbits} sampled periods` : "Phase portrait (θ, θ′)";
+  // One method has no legend: the title says which stretch of time the sampled orbits span.
+  const title = s.phase.orbits > 1 ? `Phase portrait: ${s.phase.orbits} periods sampled, 0 to ${short(s.phase.t_last)} s` : "Phase portrait (θ, θ′)";
   plot("plot-phase", traces, layout(title, "θ (rad)", "θ′ (rad/s)", {
     annotations: [{ x: a, y: 0, text: "P", showarrow: true, arrowhead: 0, ax: 22, ay: -22, font: { color: COLORS.p } }],
     ...twoMethods(traces.slice(0, -2)),
