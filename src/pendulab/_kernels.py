@@ -186,8 +186,14 @@ def taylor2_fast_step(z1, z2, h, c):
     ``|z1| >= pi`` or the step is coarse (``|K| > FAST_MAX_K``, where the test would fail
     often), it is :func:`taylor2_step` with the C library's ``sin`` and ``cos``. The
     next angle waits on the table, not on the test: the test's branch is almost always taken.
-    :func:`_certified_step` is a call, compiled once for all the drivers (inlined into each,
+    :func:`_certified_step` is a call, compiled once for the drivers (inlined into each,
     numba's typing of it made a driver's first compilation about 0.7 s longer).
+
+    :func:`fill_trajectory` and :func:`fill_thinned` run (3) this way. :func:`first_return`
+    (the period search, the sweep's scalar kernel) keeps :func:`step`'s literal
+    :func:`taylor2_step`: the table ran it about 1.2x faster there too (0.88-1.24x the C loop
+    against 0.72-0.92x, in noisy runs), but compiling it made the first, cold period
+    estimate 0.5-0.9 s slower (README: at most 3 s).
     """
     K = 0.5 * h * h * c
     if _likely(abs(z1) < PI_HI and abs(K) <= FAST_MAX_K):
@@ -270,11 +276,10 @@ def taylor_step(p, z1, z2, h, c):
 def step(method, order, z1, z2, h, c):
     """One step of the integrator ``method`` for ``theta'' = c sin(theta)`` (2).
 
-    ``order`` is used by the Taylor method of any order only. (3) runs as
-    :func:`taylor2_fast_step`: the same points as :func:`taylor2_step`, faster.
+    ``order`` is used by the Taylor method of any order only.
     """
     if method == TAYLOR2:
-        return taylor2_fast_step(z1, z2, h, c)
+        return taylor2_step(z1, z2, h, c)
     if method == RK4:
         return rk4_step(z1, z2, h, c)
     if method == VERLET:
@@ -289,7 +294,10 @@ def fill_trajectory(method, order, alpha, c, h, z1, z2):
     z1[0] = a
     z2[0] = b
     for i in range(1, len(z1)):
-        a, b = step(method, order, a, b, h, c)
+        if method == TAYLOR2:  # (3) bit for bit, mostly without the C library's calls
+            a, b = taylor2_fast_step(a, b, h, c)
+        else:
+            a, b = step(method, order, a, b, h, c)
         z1[i] = a
         z2[i] = b
 
@@ -302,7 +310,10 @@ def fill_thinned(method, order, alpha, c, h, n, stride, z1, z2):
     z2[0] = b
     k = 1
     for i in range(1, n + 1):
-        a, b = step(method, order, a, b, h, c)
+        if method == TAYLOR2:  # (3) bit for bit, mostly without the C library's calls
+            a, b = taylor2_fast_step(a, b, h, c)
+        else:
+            a, b = step(method, order, a, b, h, c)
         if i % stride == 0 or i == n:
             z1[k] = a
             z2[k] = b
