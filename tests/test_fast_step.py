@@ -20,6 +20,7 @@ from pendulab._kernels import (
     COS_MARGIN_ABS,
     FAST_COS,
     FAST_MAX_K,
+    FAST_MIN_STEPS,
     FAST_SIN,
     FOUND,
     SIN_MARGIN,
@@ -27,8 +28,11 @@ from pendulab._kernels import (
     TAYLOR2,
     _certified_step,
     _table_sin_cos,
+    fast_pays,
     fill_thinned,
+    fill_thinned_fast,
     fill_trajectory,
+    fill_trajectory_fast,
     first_return,
     taylor2_fast_step,
     taylor2_step,
@@ -169,15 +173,34 @@ def test_kernels_equal_the_python_loop(alpha, log_h, log_c, backwards):
     h, c = (-1 if backwards else 1) * 10.0**log_h, -(10.0**log_c)
     n = 3000
     ref1, ref2 = _python_loop(alpha, c, h, n)
-    z1, z2 = np.empty(n + 1), np.empty(n + 1)
-    with np.errstate(all="ignore"):
-        fill_trajectory(TAYLOR2, 2, alpha, c, h, z1, z2)
-    assert _same(z1, ref1) and _same(z2, ref2)
-    t1, t2 = np.empty(n // 7 + 2), np.empty(n // 7 + 2)
-    with np.errstate(all="ignore"):
-        fill_thinned(TAYLOR2, 2, alpha, c, h, n, 7, t1, t2)
     keep = np.r_[np.arange(0, n + 1, 7), n]
-    assert _same(t1, ref1[keep]) and _same(t2, ref2[keep])
+    for fill, thinned in ((fill_trajectory_fast, fill_thinned_fast),
+                          (lambda *a: fill_trajectory(TAYLOR2, 2, *a), lambda *a: fill_thinned(TAYLOR2, 2, *a))):
+        z1, z2 = np.empty(n + 1), np.empty(n + 1)
+        with np.errstate(all="ignore"):
+            fill(alpha, c, h, z1, z2)
+        assert _same(z1, ref1) and _same(z2, ref2)
+        t1, t2 = np.empty(n // 7 + 2), np.empty(n // 7 + 2)
+        with np.errstate(all="ignore"):
+            thinned(alpha, c, h, n, 7, t1, t2)
+        assert _same(t1, ref1[keep]) and _same(t2, ref2[keep])
+
+
+def test_simulations_take_the_fast_kernels_where_they_pay():
+    from pendulab import taylor
+
+    c = -9.80665 / 2.0800838231
+    assert fast_pays(TAYLOR2, c, 1e-5, FAST_MIN_STEPS)
+    assert not fast_pays(TAYLOR2, c, 1e-5, FAST_MIN_STEPS - 1)  # short: the literal kernel
+    assert not fast_pays(TAYLOR2, c, 1e-2, 10**6)  # coarse: the test would fail too often
+    assert not fast_pays(1, c, 1e-5, 10**6)  # another method
+    # Through the library, long and thinned: the Python loop's points, bit for bit.
+    n = 2 * FAST_MIN_STEPS
+    ref1, ref2 = _python_loop(2.5, c, 1e-5, n)
+    full = taylor.simulate(2.0800838231, 2.5, 1e-5, n * 1e-5)
+    assert len(full.theta) == n + 1 and _same(full.theta, ref1) and _same(full.omega, ref2)
+    thin = taylor.simulate(2.0800838231, 2.5, 1e-5, n * 1e-5, stride=1000)
+    assert _same(thin.theta, ref1[::1000]) and _same(thin.omega, ref2[::1000])
 
 
 @pytest.mark.parametrize(("alpha", "h"), [(4 * math.pi / 5, 1e-5), (0.3, 1e-4), (3.0, 1e-4), (1e-3, 1e-4)])

@@ -189,11 +189,12 @@ def taylor2_fast_step(z1, z2, h, c):
     :func:`_certified_step` is a call, compiled once for the drivers (inlined into each,
     numba's typing of it made a driver's first compilation about 0.7 s longer).
 
-    :func:`fill_trajectory` and :func:`fill_thinned` run (3) this way. :func:`first_return`
-    (the period search, the sweep's scalar kernel) keeps :func:`step`'s literal
-    :func:`taylor2_step`: the table ran it about 1.2x faster there too (0.88-1.24x the C loop
-    against 0.72-0.92x, in noisy runs), but compiling it made the first, cold period
-    estimate 0.5-0.9 s slower (README: at most 3 s).
+    :func:`fill_trajectory_fast` and :func:`fill_thinned_fast` run (3) this way, for the
+    simulations where it pays (:func:`fast_pays`: fine steps, long runs); the others run
+    :func:`step`'s literal :func:`taylor2_step`, and so does :func:`first_return` (the period
+    search, the sweep's scalar kernel): the table ran it about 1.2x faster there too
+    (0.88-1.24x the C loop against 0.72-0.92x, in noisy runs), but compiling it made the
+    first, cold period estimate 0.5-0.9 s slower (README: at most 3 s).
     """
     K = 0.5 * h * h * c
     if _likely(abs(z1) < PI_HI and abs(K) <= FAST_MAX_K):
@@ -294,10 +295,7 @@ def fill_trajectory(method, order, alpha, c, h, z1, z2):
     z1[0] = a
     z2[0] = b
     for i in range(1, len(z1)):
-        if method == TAYLOR2:  # (3) bit for bit, mostly without the C library's calls
-            a, b = taylor2_fast_step(a, b, h, c)
-        else:
-            a, b = step(method, order, a, b, h, c)
+        a, b = step(method, order, a, b, h, c)
         z1[i] = a
         z2[i] = b
 
@@ -310,10 +308,47 @@ def fill_thinned(method, order, alpha, c, h, n, stride, z1, z2):
     z2[0] = b
     k = 1
     for i in range(1, n + 1):
-        if method == TAYLOR2:  # (3) bit for bit, mostly without the C library's calls
-            a, b = taylor2_fast_step(a, b, h, c)
-        else:
-            a, b = step(method, order, a, b, h, c)
+        a, b = step(method, order, a, b, h, c)
+        if i % stride == 0 or i == n:
+            z1[k] = a
+            z2[k] = b
+            k += 1
+
+
+#: The fewest steps for which a simulation of (3) runs the fast kernels below: shorter runs
+#: take milliseconds either way, and keeping them on the literal ones spares the report
+#: (whose simulations are short) and any short simulation on a fresh install the fast
+#: kernels' compilation (about 0.5 s each).
+FAST_MIN_STEPS = 100_000
+
+
+def fast_pays(method, c, h, n) -> bool:
+    """Whether ``n`` steps of ``method`` run through :func:`taylor2_fast_step`: (3), a step
+    fine enough for its rounding test to pass (``|h^2 c/2| <= FAST_MAX_K``) and a long run."""
+    return method == TAYLOR2 and abs(0.5 * h * h * c) <= FAST_MAX_K and n >= FAST_MIN_STEPS
+
+
+@njit(cache=True, nogil=True)
+def fill_trajectory_fast(alpha, c, h, z1, z2):
+    """:func:`fill_trajectory` for (3) through :func:`taylor2_fast_step`: the same points."""
+    a, b = alpha, 0.0
+    z1[0] = a
+    z2[0] = b
+    for i in range(1, len(z1)):
+        a, b = taylor2_fast_step(a, b, h, c)
+        z1[i] = a
+        z2[i] = b
+
+
+@njit(cache=True, nogil=True)
+def fill_thinned_fast(alpha, c, h, n, stride, z1, z2):
+    """:func:`fill_thinned` for (3) through :func:`taylor2_fast_step`: the same points."""
+    a, b = alpha, 0.0
+    z1[0] = a
+    z2[0] = b
+    k = 1
+    for i in range(1, n + 1):
+        a, b = taylor2_fast_step(a, b, h, c)
         if i % stride == 0 or i == n:
             z1[k] = a
             z2[k] = b
@@ -324,7 +359,10 @@ def trajectory(method, order, alpha, c, h, n):
     """The points ``Z_j``, ``j = 0..n``, as two new arrays."""
     z1 = np.empty(n + 1)
     z2 = np.empty(n + 1)
-    fill_trajectory(method, order, alpha, c, h, z1, z2)
+    if fast_pays(method, c, h, n):
+        fill_trajectory_fast(alpha, c, h, z1, z2)
+    else:
+        fill_trajectory(method, order, alpha, c, h, z1, z2)
     return z1, z2
 
 
