@@ -307,12 +307,14 @@ def fill_thinned(method, order, alpha, c, h, n, stride, z1, z2):
     z1[0] = a
     z2[0] = b
     k = 1
+    keep = stride  # the next multiple of stride: no integer division per step (~7 ns of ~30)
     for i in range(1, n + 1):
         a, b = step(method, order, a, b, h, c)
-        if i % stride == 0 or i == n:
+        if i == keep or i == n:
             z1[k] = a
             z2[k] = b
             k += 1
+            keep += stride
 
 
 #: The fewest steps for which a simulation of (3) runs the fast kernels below: shorter runs
@@ -347,12 +349,14 @@ def fill_thinned_fast(alpha, c, h, n, stride, z1, z2):
     z1[0] = a
     z2[0] = b
     k = 1
+    keep = stride
     for i in range(1, n + 1):
         a, b = taylor2_fast_step(a, b, h, c)
-        if i % stride == 0 or i == n:
+        if i == keep or i == n:
             z1[k] = a
             z2[k] = b
             k += 1
+            keep += stride
 
 
 def trajectory(method, order, alpha, c, h, n):
