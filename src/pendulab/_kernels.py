@@ -310,7 +310,7 @@ def fill_thinned(method, order, alpha, c, h, n, stride, z1, z2):
     keep = stride  # the next multiple of stride: no integer division per step (~7 ns of ~30)
     for i in range(1, n + 1):
         a, b = step(method, order, a, b, h, c)
-        if i == keep or i == n:
+        if i == keep or i == n:  # noqa: SIM109 (two compares in the compiled loop, no tuple)
             z1[k] = a
             z2[k] = b
             k += 1
@@ -352,7 +352,7 @@ def fill_thinned_fast(alpha, c, h, n, stride, z1, z2):
     keep = stride
     for i in range(1, n + 1):
         a, b = taylor2_fast_step(a, b, h, c)
-        if i == keep or i == n:
+        if i == keep or i == n:  # noqa: SIM109 (two compares in the compiled loop, no tuple)
             z1[k] = a
             z2[k] = b
             k += 1
