@@ -12,7 +12,7 @@ from llvmlite import ir  # type: ignore[import-untyped]
 from numba import njit, prange, types
 from numba.extending import intrinsic
 
-from ._agm import COS_HI, COS_LO, N_TABLE, PI_HI, SIN_HI, SIN_LO
+from ._agm import COS_HI, N_TABLE, PI_HI, SIN_HI
 from ._libm import cos, sin
 from .methods import MAX_TAYLOR_ORDER, Kernel, Status
 
@@ -84,32 +84,9 @@ def _bits_intrinsic(typingctx, x):
 _bits: Any = _bits_intrinsic  # called without the typing context
 
 
-def _fast_table() -> tuple[np.ndarray, np.ndarray]:
-    """``sin(k/256), cos(k/256)`` for ``k = 0..805`` (``k/256`` up to pi), each the nearest double.
-
-    Up to ``k = 403`` :mod:`pendulab._agm`'s table (double-doubles); beyond, the sums
-    ``sin(a + b) = sin a cos b + cos a sin b``, ``cos(a + b) = cos a cos b - sin a sin b``
-    of its entries ``a = 403/256``, ``b = (k - 403)/256`` in 50-digit decimals (terms within
-    2^-105 of their values, then rounded once). ``tests/test_fast_step.py`` checks every
-    entry against mpmath.
-    """
-    from decimal import Decimal, localcontext
-
-    def dd(i):
-        return (Decimal(SIN_HI[i]) + Decimal(SIN_LO[i]), Decimal(COS_HI[i]) + Decimal(COS_LO[i]))
-
-    s_tab, c_tab = np.empty(806), np.empty(806)
-    s_tab[:404], c_tab[:404] = SIN_HI[:404], COS_HI[:404]
-    with localcontext() as ctx:
-        ctx.prec = 50
-        sa, ca = dd(403)
-        for k in range(404, 806):
-            sb, cb = dd(k - 403)
-            s_tab[k], c_tab[k] = float(sa * cb + ca * sb), float(ca * cb - sa * sb)
-    return s_tab, c_tab
-
-
-FAST_SIN, FAST_COS = _fast_table()
+#: ``sin(k/256), cos(k/256)``, ``k = 0..805`` (``k/256`` up to pi): the nearest doubles, the
+#: leading parts of :mod:`pendulab._agm`'s double-double table.
+FAST_SIN, FAST_COS = SIN_HI, COS_HI
 
 
 @njit(cache=True, nogil=True, inline="always")
@@ -117,7 +94,7 @@ def _table_sin_cos(z1):
     """``sin(z1), cos(z1)`` for ``|z1| < pi`` from a table and two short series (no call).
 
     ``|z1| = k/256 + r``, ``|r| <= 2^-9`` with ``r`` exact (Sterbenz), the table's
-    ``sin(k/256), cos(k/256)`` (:func:`_fast_table`) and ``sin r = r + r u (-1/6 + u/120)``,
+    ``sin(k/256), cos(k/256)`` (:data:`FAST_SIN`, :data:`FAST_COS`) and ``sin r = r + r u (-1/6 + u/120)``,
     ``cos r = 1 + u (-1/2 + u/24)``, ``u = r^2`` (truncation below 2^-66 and 2^-63 of the
     value); the sums add the table's value last. ``k`` is read from the bits of
     ``|z1| + 1.5 * 2^44`` (whose last bit is worth 1/256), off the angle's path.
