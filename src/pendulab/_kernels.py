@@ -347,6 +347,17 @@ def trajectory(method, order, alpha, c, h, n):
     return z1, z2
 
 
+def thinned(method, order, alpha, c, h, n, stride, size):
+    """The points kept by :func:`fill_thinned` (``size`` of them), as two new arrays."""
+    z1 = np.empty(size)
+    z2 = np.empty(size)
+    if fast_pays(method, c, h, n):
+        fill_thinned_fast(alpha, c, h, n, stride, z1, z2)
+    else:
+        fill_thinned(method, order, alpha, c, h, n, stride, z1, z2)
+    return z1, z2
+
+
 #: Status codes of :func:`first_return` (:class:`pendulab.methods.Status`, as plain ints).
 FOUND, NO_RETURN, LEFT_OSCILLATION, TOO_EARLY = (
     int(s) for s in (Status.FOUND, Status.NO_RETURN, Status.LEFT_OSCILLATION, Status.TOO_EARLY)

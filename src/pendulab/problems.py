@@ -553,7 +553,7 @@ class Problem5(Result):
     @property
     def t_hat_converged(self) -> bool:
         """``T^`` is within the rounding of the double loop (``FIXED_ITERATIONS_ULPS``) of ``T``."""
-        return abs(self.t_hat_ulps) <= FIXED_ITERATIONS_ULPS
+        return _converged(self.t_hat, self.correctly_rounded)
 
     @property
     def substitution_reference(self) -> float:
@@ -591,13 +591,18 @@ def _ulps_from(t_hat: float, rounded: float) -> int:
     return round((t_hat - rounded) / math.ulp(rounded))
 
 
+def _converged(t_hat: float, rounded: float) -> bool:
+    """``t_hat`` is within the rounding of the double loop (``FIXED_ITERATIONS_ULPS``) of ``rounded``."""
+    return abs(_ulps_from(t_hat, rounded)) <= FIXED_ITERATIONS_ULPS
+
+
 def _substitution_reference(t_hat: float, rounded: float) -> float:
-    """``t_hat`` within the rounding of the double loop of ``rounded``, else ``rounded``.
+    """``t_hat`` where it has converged (:func:`_converged`), else ``rounded``.
 
     The substituted rule reaches the rounding level: against a ``T^`` that has not converged
     (near pi) its error would be ``T^``'s, so it is measured against the true period there.
     """
-    return t_hat if abs(_ulps_from(t_hat, rounded)) <= FIXED_ITERATIONS_ULPS else rounded
+    return t_hat if _converged(t_hat, rounded) else rounded
 
 
 def problem5(

@@ -142,15 +142,11 @@ def simulate(
     index = np.arange(0, n + 1, stride)
     if index[-1] != n:
         index = np.append(index, n)
-    from ._kernels import fast_pays, fill_thinned, fill_thinned_fast, trajectory
+    from ._kernels import thinned, trajectory
 
     if stride == 1:
         z1, z2 = trajectory(code, order, alpha, -g / length, step, n)
     else:
-        z1, z2 = np.empty(len(index)), np.empty(len(index))
-        if fast_pays(code, -g / length, step, n):
-            fill_thinned_fast(alpha, -g / length, step, n, stride, z1, z2)
-        else:
-            fill_thinned(code, order, alpha, -g / length, step, n, stride, z1, z2)
+        z1, z2 = thinned(code, order, alpha, -g / length, step, n, stride, len(index))
     t = t0 + step * index
     return Trajectory(t, z1, z2, length, alpha, g, step, t0, method)
