@@ -117,6 +117,14 @@ def _table_sin_cos(z1):
     return math.copysign(sin_x, z1), cos_x
 
 
+@njit(cache=True, nogil=True, inline="always")
+def _margins(z1, s, co):
+    """``(ds, dc)``: how far the C library's ``sin z1``, ``cos z1`` may lie from the table's
+    ``s``, ``co`` (:data:`SIN_MARGIN`, :data:`SIN_MARGIN_ABS`, :data:`COS_MARGIN`, :data:`COS_MARGIN_ABS`)."""
+    ds = abs(s) * SIN_MARGIN + (SIN_MARGIN_ABS if abs(z1) > 3.0 else 1e-300)
+    return ds, abs(co) * COS_MARGIN + COS_MARGIN_ABS
+
+
 @njit(cache=True, nogil=True)
 def _certified_step(z1, z2, h, c, K):
     """``(certified, z1', z2')``: (3) with the table's ``sin`` and ``cos`` (``|z1| < pi``), and
@@ -127,8 +135,7 @@ def _certified_step(z1, z2, h, c, K):
     hc = h * c
     kz2 = K * z2
     z2_next = (z2 + hc * s) + kz2 * co
-    ds = abs(s) * SIN_MARGIN + (SIN_MARGIN_ABS if abs(z1) > 3.0 else 1e-300)
-    dc = abs(co) * COS_MARGIN + COS_MARGIN_ABS
+    ds, dc = _margins(z1, s, co)
     a_lo, a_hi = z2 + hc * (s - ds), z2 + hc * (s + ds)
     b_lo, b_hi = kz2 * (co - dc), kz2 * (co + dc)
     if a_hi < a_lo:
