@@ -347,7 +347,7 @@ def trajectory(method, order, alpha, c, h, n):
     """The points ``Z_j``, ``j = 0..n``, as two new arrays."""
     z1 = np.empty(n + 1)
     z2 = np.empty(n + 1)
-    if fast_pays(method, c, h, n):
+    if fast_pays(method, c, h, n):  # (3), fine and long: the same points, faster (taylor2_fast_step)
         fill_trajectory_fast(alpha, c, h, z1, z2)
     else:
         fill_trajectory(method, order, alpha, c, h, z1, z2)
