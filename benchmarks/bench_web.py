@@ -6,7 +6,7 @@ period search streamed over 1.5 T / h = 93 000 steps. Side by side, as ratios to
 library's own work (the floor the web layer cannot go below):
 
 1. library   ``taylor.simulate`` + ``crossing.estimate_period`` + ``period.agm_period``
-2. presenter ``web.api.simulate_view`` + the JSON encoding of the response, in process:
+2. presenter ``web.views.simulate_view`` + the JSON encoding of the response, in process:
              one streamed pass keeping each column's min/max of theta and of the energy,
              the phase and animation samples, the exact motion and the global error
 3. HTTP      a GET to ``pendulab serve`` on loopback (keep-alive), JSON decoded
@@ -26,7 +26,7 @@ import httpx
 from pendulab.crossing import estimate_period
 from pendulab.period import agm_period
 from pendulab.taylor import simulate
-from pendulab.web import api
+from pendulab.web import views
 from pendulab.web.app import _encode
 from pendulab.web.child import serve_in_child
 
@@ -53,7 +53,7 @@ def library() -> None:
 
 
 def presenter() -> None:
-    _encode(api.simulate_view(QUERY))  # the app's own encoder
+    _encode(views.simulate_view(QUERY))  # the app's own encoder
 
 
 def main() -> None:

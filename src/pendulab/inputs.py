@@ -1,7 +1,7 @@
 """Every value a person types, parsed in one place.
 
 The CLI's parameter types (:mod:`pendulab.cli._common`) and the web API's query
-parameters (:mod:`pendulab.web.api`) both call these functions, so a value is judged the
+parameters (:mod:`pendulab.web.parameters`) both call these functions, so a value is judged the
 same way wherever it is typed. Each function takes the argument's ``name`` and the text,
 and returns the value or raises :class:`~pendulab.errors.InputError` naming the argument,
 the text (shortened if long, quoted if unprintable) and what is allowed.

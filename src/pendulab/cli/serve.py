@@ -86,7 +86,7 @@ def serve(port: int, host: str) -> None:
 
     from .._warm import warm_kernels
     from ..web import create_app
-    from ..web.api import warm
+    from ..web.views import warm
 
     warm_kernels()  # the library's kernels compiled (or loaded) while the server starts
     # and the explorer's own (web/_view.py), through one tiny request.

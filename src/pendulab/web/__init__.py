@@ -1,7 +1,9 @@
 """The local web explorer of ``pendulab serve``: a page and a JSON API over the library.
 
-:func:`create_app` builds the FastAPI app; :mod:`pendulab.web.api` holds the request
-handling as plain functions. The page's own HTML, script and style live in ``static/``;
+:func:`create_app` builds the FastAPI app (:mod:`~pendulab.web.app`); the request handling
+is plain functions: :mod:`~pendulab.web.parameters` reads a query, :mod:`~pendulab.web.limits`
+bounds its work, :mod:`~pendulab.web.sampling` chooses what is drawn, :mod:`~pendulab.web.views`
+renders the answers whose shapes :mod:`~pendulab.web.models` publishes. The page's own HTML, script and style live in ``static/``;
 plotly.js is served from the installed ``plotly`` package, so the page works offline.
 """
 from .app import create_app

@@ -9,6 +9,8 @@ in time order has, column by column, the same extent as the whole trajectory (th
 min/max reduction of Jugel et al., "M4: A Visualization-Oriented Time Series Data
 Aggregation", PVLDB 7(10), 2014). It also keeps the full state at a list of steps (the
 phase portrait's and the animation's samples). Memory: O(nb + samples), whatever ``n``.
+It runs a chunk of steps at a time, carrying its state, so the caller can stop between
+chunks (a request whose client has gone).
 
 :func:`advance` runs a block of steps from a given state, for the CSV that streams.
 """
@@ -22,9 +24,14 @@ from .._kernels import step
 
 
 @njit(cache=True, nogil=True)
-def scan(method, order, alpha, c, h, n, samples, s_theta, s_omega,
+def scan(method, order, alpha, c, h, n, i0, i1, z, where, samples, s_theta, s_omega,
          i_lo, i_hi, th_lo, th_hi, om_lo, om_hi, e_i_lo, e_i_hi, e_lo, e_hi):
-    """Run ``n`` steps from ``(alpha, 0)``; fill the per-column extremes and the samples.
+    """Steps ``i0 .. i1 - 1`` of a run of ``n`` steps from ``(alpha, 0)``: one chunk of the pass.
+
+    ``z``: the state ``(theta, theta')`` of step ``i0 - 1`` (of step 0 when ``i0 = 0``),
+    updated to that of step ``i1 - 1``; ``where``: the pass's position, ``(column, first
+    step of the next column, next sample, left, bad)``, updated. The arrays start at
+    ``+-inf`` (extremes) and ``-1`` (steps); chunk after chunk they fill as one pass would.
 
     Column ``b`` (``b < nb = len(i_lo)``) holds the steps ``i`` with ``floor(i nb/(n+1)) = b``.
     ``i_lo[b]``/``i_hi[b]``: the first step of the column's smallest ``theta``, the last of its
@@ -32,30 +39,17 @@ def scan(method, order, alpha, c, h, n, samples, s_theta, s_omega,
     ``-1`` where every value is NaN.
     The energy drift is ``(E - E0)/(m g l) = theta'^2 l/(2g) - cos(theta) + cos(alpha)``
     (``c = -g/l``). ``samples``: sorted step indices whose state goes to ``s_theta, s_omega``.
-    Returns ``(left, bad)``: the first step with ``|theta| >= pi`` (the pendulum went over
-    the top, which the exact motion from rest below pi never does) and the first
-    non-finite state; ``-1`` when none.
+    ``left``: the first step with ``|theta| >= pi`` (the pendulum went over the top, which
+    the exact motion from rest below pi never does); ``bad``: the first non-finite state;
+    ``-1`` when none.
     """
     nb = len(i_lo)
-    for b in range(nb):
-        i_lo[b] = -1
-        i_hi[b] = -1
-        e_i_lo[b] = -1
-        e_i_hi[b] = -1
-        th_lo[b] = math.inf
-        th_hi[b] = -math.inf
-        e_lo[b] = math.inf
-        e_hi[b] = -math.inf
     scale = 1.0 / (-2.0 * c) if c != 0.0 else 0.0
-    e0 = math.cos(alpha)
-    left = -1
-    bad = -1
-    col = 0
-    nxt = (n + 1 + nb - 1) // nb  # first step of column 1: ceil((n+1)/nb)
-    s = 0
+    col, nxt, s, left, bad = where[0], where[1], where[2], where[3], where[4]
     ns = len(samples)
-    z1, z2 = alpha, 0.0
-    for i in range(n + 1):
+    z1, z2 = z[0], z[1]
+    e0 = math.cos(alpha)
+    for i in range(i0, i1):
         if i > 0:
             z1, z2 = step(method, order, z1, z2, h, c)
         while i >= nxt:
@@ -84,7 +78,8 @@ def scan(method, order, alpha, c, h, n, samples, s_theta, s_omega,
             s_theta[s] = z1
             s_omega[s] = z2
             s += 1
-    return left, bad
+    z[0], z[1] = z1, z2
+    where[0], where[1], where[2], where[3], where[4] = col, nxt, s, left, bad
 
 
 @njit(cache=True, nogil=True)

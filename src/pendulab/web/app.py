@@ -15,12 +15,16 @@ Routes
 A bad or missing parameter gives status 422 and ``{"error": {"field", "value",
 "allowed", "message"}}``; no input crashes the server.
 
+The answers' shapes are :mod:`pendulab.web.models`, published in ``/api/openapi.json``.
+
 Concurrency: every route is ``async``. The light ones (page, config, exact period) answer
 on the event loop at once; each simulation runs in a pool of its own of
-:data:`pendulab.web.api.SIMULATION_SLOTS` threads at lower priority (nice +10). A request
-waiting for a slot is a queued work item awaited on the event loop, holding no thread, so
-a class's worth of heavy requests never stops the page from answering; the numba kernels
-release the GIL while they run.
+:data:`pendulab.web.limits.SIMULATION_SLOTS` threads at lower priority (nice +10), the one
+limit on the cores. A request waiting for a slot is a queued work item awaited on the event
+loop, holding no thread, so a class's worth of heavy requests never stops the page from
+answering; the numba kernels release the GIL while they run. When a client goes away, its
+queued work is dropped and its running work stops at the next chunk
+(:class:`pendulab.web.views.Cancelled`).
 """
 from __future__ import annotations
 
@@ -42,7 +46,7 @@ from fastapi.responses import FileResponse, HTMLResponse, JSONResponse, Response
 from starlette.exceptions import HTTPException as StarletteHTTPException
 
 from ..errors import InputError
-from . import api
+from . import limits, models, views
 
 STATIC = Path(__file__).parent / "static"
 _log = logging.getLogger("pendulab.web")
@@ -113,6 +117,28 @@ class _Slots:
     async def run(self, fn: Callable[..., Any], *args: Any) -> Any:
         return await asyncio.get_running_loop().run_in_executor(self.pool, fn, *args)
 
+    async def run_while_connected(self, request: Request, fn: Callable[[threading.Event], Any]) -> Any:
+        """``fn(stop)`` in a slot; if the client disconnects first, ``stop`` is set (and a
+        queued ``fn`` never starts). Returns ``fn``'s result, or None when the client has gone."""
+        stop = threading.Event()
+        work = asyncio.ensure_future(self.run(fn, stop))
+        gone = asyncio.ensure_future(_disconnected(request))
+        try:
+            await asyncio.wait((work, gone), return_when=asyncio.FIRST_COMPLETED)
+        finally:
+            gone.cancel()
+        if not work.done():
+            stop.set()
+            work.cancel()  # a queued item is dropped; a running one sees stop at its next chunk
+            return None
+        return work.result()
+
+
+async def _disconnected(request: Request) -> None:
+    """Return when the client of ``request`` (a GET, whose body is read) disconnects."""
+    while (await request.receive())["type"] != "http.disconnect":
+        pass
+
 
 def _given(params: dict[str, str | None]) -> dict[str, str]:
     """The query parameters that were sent (the library's parsers judge their text)."""
@@ -155,20 +181,24 @@ def create_app() -> FastAPI:
 
     # The page's own files, read once: answered from memory on the event loop, no thread needed.
     pages = {name: (STATIC / name).read_bytes() for name in _PAGES}
-    slots = _Slots(api.SIMULATION_SLOTS)
+    slots = _Slots(limits.SIMULATION_SLOTS)
     app.state.slots = slots
 
-    async def heavy(call: Callable[[dict[str, str]], Any], query: dict[str, str | None]) -> Response:
-        """Parse, compute and encode in a worker thread, within the simulation slots."""
+    async def heavy(request: Request, call: Callable[..., Any], query: dict[str, str | None]) -> Response:
+        """Parse, compute and encode in a worker thread, within the simulation slots; stopped
+        when the client goes away."""
         params = _given(query)
 
-        def work() -> Response:
+        def work(stop: threading.Event) -> Response:
             try:
-                return Response(_encode(call(params)), media_type="application/json")
+                return Response(_encode(call(params, stop)), media_type="application/json")
             except InputError as exc:
                 return JSONResponse(error_body(exc), status_code=422)
+            except views.Cancelled:
+                return Response(status_code=499)  # nobody reads it
 
-        return await slots.run(work)
+        answer = await slots.run_while_connected(request, work)
+        return Response(status_code=499) if answer is None else answer
 
     def light(call: Callable[[dict[str, str]], Any], query: dict[str, str | None]) -> Response:
         try:
@@ -176,37 +206,42 @@ def create_app() -> FastAPI:
         except InputError as exc:
             return JSONResponse(error_body(exc), status_code=422)
 
-    @app.get("/api/config")
-    async def config() -> Response:
-        return JSONResponse(api.config_view())
+    bad: dict[int | str, dict[str, Any]] = {422: {"model": models.ErrorAnswer, "description": "a bad parameter, named"}}
 
-    @app.get("/api/period")
+    @app.get("/api/config", response_model=models.ConfigAnswer)
+    async def config() -> Response:
+        return JSONResponse(views.config_view())
+
+    @app.get("/api/period", response_model=models.PeriodAnswer, responses=bad)
     async def period(length: Length = None, amplitude: Amplitude = None, unit: Unit = None,
                      g: Gravity = None) -> Response:
         # One AGM: microseconds, answered on the event loop.
-        return light(api.period_endpoint, {"length": length, "amplitude": amplitude, "unit": unit, "g": g})
+        return light(views.period_endpoint, {"length": length, "amplitude": amplitude, "unit": unit, "g": g})
 
-    @app.get("/api/simulate")
-    async def simulate(length: Length = None, amplitude: Amplitude = None, unit: Unit = None, g: Gravity = None,
+    @app.get("/api/simulate", response_model=models.SimulateAnswer, responses=bad)
+    async def simulate(request: Request, length: Length = None, amplitude: Amplitude = None, unit: Unit = None, g: Gravity = None,
                        step: Step = None, t_max: TMax = None, method: MethodName = None,
                        points: Points = None) -> Response:
-        return await heavy(api.simulate_view, {"length": length, "amplitude": amplitude, "unit": unit, "g": g,
+        return await heavy(request, views.simulate_view, {"length": length, "amplitude": amplitude, "unit": unit, "g": g,
                                                "step": step, "t_max": t_max, "method": method, "points": points})
 
-    @app.get("/api/convergence")
-    async def convergence(length: Length = None, amplitude: Amplitude = None, unit: Unit = None, g: Gravity = None,
+    @app.get("/api/convergence", response_model=models.ConvergenceAnswer, responses=bad)
+    async def convergence(request: Request, length: Length = None, amplitude: Amplitude = None, unit: Unit = None, g: Gravity = None,
                           method: MethodName = None, steps: Steps = None) -> Response:
-        return await heavy(api.convergence_view, {"length": length, "amplitude": amplitude, "unit": unit, "g": g,
+        return await heavy(request, views.convergence_view, {"length": length, "amplitude": amplitude, "unit": unit, "g": g,
                                                   "method": method, "steps": steps})
 
-    @app.get("/api/trajectory.csv")
+    csv: dict[int | str, dict[str, Any]] = {200: {"content": {"text/csv": {"schema": {"type": "string"}}},
+                 "description": "t_s,theta_rad,omega_rad_per_s: one row per kept step, full precision"}}
+
+    @app.get("/api/trajectory.csv", response_class=StreamingResponse, responses=csv | bad)
     async def trajectory_csv(length: Length = None, amplitude: Amplitude = None, unit: Unit = None,
                              g: Gravity = None, step: Step = None, t_max: TMax = None, method: MethodName = None,
                              points: Points = None) -> Response:
         params = {"length": length, "amplitude": amplitude, "unit": unit, "g": g, "step": step, "t_max": t_max,
                   "method": method, "points": points}
         try:
-            blocks, name = api.trajectory_csv(_given(params))
+            blocks, name = views.trajectory_csv(_given(params))
         except InputError as exc:
             return JSONResponse(error_body(exc), status_code=422)
 

@@ -1,0 +1,89 @@
+"""What one request of the explorer may cost: work weighted by the method, points, bytes.
+
+Work is counted in steps of the coursework's method (3) (``taylor2``): a step of another
+method counts as :func:`weight` of them, so ``taylor:30``, about twenty times dearer a
+step, gets about a twentieth of the steps. Every check runs before any work starts and
+raises :class:`pendulab.errors.InputError` naming the field to change.
+"""
+from __future__ import annotations
+
+import math
+import os
+
+from .. import inputs
+from ..errors import InputError
+from ..methods import Kernel, Method
+
+#: The work one request may run, in steps of (3) (about 1 s of one core for taylor2).
+MAX_WORK = 10_000_000
+#: At most this many points in an ``/api/simulate`` answer (its size: :data:`MAX_ANSWER_BYTES`).
+MAX_POINTS = 20_000
+#: At most this many rows in a CSV (streamed block by block: the server holds one block).
+MAX_CSV_ROWS = 1_000_000
+#: Points returned for plotting when the request does not say.
+DEFAULT_PLOT_POINTS = 2_000
+#: At most this many steps in one convergence sweep.
+MAX_SWEEP = 40
+#: Simulations run at once: one per core (the kernels release the GIL), at least two.
+SIMULATION_SLOTS = max(2, os.cpu_count() or 2)
+
+#: An ordinary view (the defaults): which of step and t_max is unusual is judged against them.
+_TYPICAL = {"step": 1e-3, "t_max": 20.0}
+
+# Cost of one step relative to one step of (3): per-step times of the explorer's streamed
+# pass (sampling.simulate_arrays, 2-core machine, best of 3): rk4 1.82, verlet 1.21,
+# taylor:P 2.4 (P = 2) to 25.9 (P = 30), about 2.5 + P^2/36 (the series of sin theta(t)
+# are Cauchy products of P terms).
+_NAMED_WEIGHT = {Kernel.TAYLOR2: 1.0, Kernel.RK4: 1.8, Kernel.VERLET: 1.2}
+
+
+def weight(method: Method) -> float:
+    """The cost of one step of ``method`` in steps of (3) (``taylor2``)."""
+    if method.code == Kernel.TAYLOR:
+        return 2.5 + method.order * method.order / 36.0
+    return _NAMED_WEIGHT.get(method.code, 1.0)
+
+
+def max_steps(method: Method) -> int:
+    """The most steps of ``method`` one request may run."""
+    return int(MAX_WORK / weight(method))
+
+
+def check_run(span: float, step: float, method: Method, step_text: str | None = None,
+              t_max_text: str | None = None) -> None:
+    """Refuse a run of ``span / step`` steps of ``method`` beyond :func:`max_steps`.
+
+    Blames the one of ``step`` and ``t_max`` further (in decades) from an ordinary view;
+    the values are shown as typed when given.
+    """
+    most = max_steps(method)
+    n = span / step
+    if n <= most:
+        return
+    per = f"{most:.3g} steps of {method.name}"
+    if t_max_text is not None and abs(math.log10(span / _TYPICAL["t_max"])) > abs(math.log10(_TYPICAL["step"] / step)):
+        raise InputError("t_max", inputs.shown(t_max_text),
+                         f"<= {per} of h = {step:g} s, i.e. t_max <= {most * step:.4g} s (or a larger step)")
+    shown = inputs.shown(step_text) if step_text is not None else f"{step:g}"
+    raise InputError("step", shown,
+                     f"such that at most {per} are run: here {span:.4g} s / {step:g} s = {n:.3g} "
+                     f"steps; use step >= {span / most:.3g} s")
+
+
+def search_too_long(span: float, step: float, period: float, method: Method) -> str | None:
+    """Why the period search over ``span`` s (``1.5 T + 4h``) is not run, or None when it fits."""
+    most = max_steps(method)
+    if span / step <= most:
+        return None
+    hint = f"; use step >= {span / most:.3g} s" if span / most < period / 20 else ""
+    return (f"the period search would run {span / step:.3g} steps of h = {step:g} s to reach 1.5 T + 4h = {span:.4g} s, "
+            f"more than the {most:.3g} steps of {method.name} allowed{hint}")
+
+
+def check_sweep(spans: list[float], steps: list[float], method: Method) -> None:
+    """Refuse a convergence sweep whose period searches run more than :data:`MAX_WORK` in all."""
+    total = sum(s / h for s, h in zip(spans, steps))
+    most = max_steps(method)
+    if total > most:
+        raise InputError("steps", f"{min(steps):g} (smallest)",
+                         f"such that at most {most:.3g} steps of {method.name} are run in all: these need {total:.3g}")

@@ -1,0 +1,192 @@
+"""The shape of every answer the page reads: pydantic models, published in ``/openapi.json``.
+
+The routes declare them as their response models, so the schema is the contract between
+the server (:mod:`pendulab.web.views`) and the page (``static/app.js``); a test checks
+real answers against it. No model allows a key it does not list. ``null`` in a list of
+numbers is a value that is not a finite number (a simulation that blew up), or in the
+phase portrait a break between two orbits.
+"""
+from __future__ import annotations
+
+from typing import Literal
+
+from pydantic import BaseModel, ConfigDict, Field
+
+Values = list[float | None]
+
+
+class _Model(BaseModel):
+    model_config = ConfigDict(extra="forbid")
+
+
+class MethodEntry(_Model):
+    name: str = Field(description="as typed in a query: taylor2, rk4, verlet, taylor:P")
+    order: int
+    description: str
+
+
+class Limits(_Model):
+    max_steps: int = Field(description="work of one request, in steps of the coursework's method (3); "
+                                       "a dearer method gets proportionally fewer steps")
+    max_points: int = Field(description="points of one /api/simulate answer")
+    plot_points: int = Field(description="points of an /api/simulate answer that does not ask")
+
+
+class Problem5(_Model):
+    length: float
+    amplitude: float
+
+
+class ConfigAnswer(_Model):
+    """``GET /api/config``."""
+
+    methods: list[MethodEntry] = Field(description="the named methods of the registry, in menu order")
+    family: list[MethodEntry] = Field(description="the Taylor method of every order, taylor:1 .. taylor:30")
+    g_presets: dict[str, float] = Field(description="m/s^2")
+    limits: Limits
+    defaults: dict[str, str] = Field(description="the default view's query values, as text")
+    problem5: Problem5
+
+
+class PeriodAnswer(_Model):
+    """``GET /api/period``: the pendulum as read, its AGM and small-angle periods."""
+
+    length: float = Field(description="m")
+    amplitude: float = Field(description="rad")
+    amplitude_deg: float
+    g: float = Field(description="m/s^2")
+    exact: float = Field(description="the AGM period, equations (7)-(8), s")
+    small_angle: float = Field(description="2 pi sqrt(l/g), s")
+
+
+class EstimateErrors(_Model):
+    bracket_mid: float
+    linear: float | None
+    cubic: float | None
+
+
+class Estimate(_Model):
+    step: float
+    method: str
+    j: int = Field(description="index of the step after which theta' changes sign")
+    bracket: list[float] = Field(min_length=2, max_length=2, description="[t_j, t_j+1], s")
+    bracket_mid: float
+    linear: float | None
+    cubic: float | None = Field(description="the inverse-cubic estimate of problem 3(d), s")
+    cubic_error_estimate: float | None
+    errors: EstimateErrors = Field(description="absolute errors against the AGM period, s")
+    exact: float = Field(description="the AGM period, s")
+
+
+class PeriodWithEstimate(PeriodAnswer):
+    estimate: Estimate | None
+    reason: str | None = Field(description="why there is no estimate (no return, over the top, too long)")
+
+
+class Input(_Model):
+    length: float
+    amplitude: float
+    step: float
+    t_max: float
+    g: float
+    method: str
+    amplitude_deg: float
+
+
+class Units(_Model):
+    t: str
+    theta: str
+    omega: str
+    period: str
+    energy: str
+
+
+class Curve(_Model):
+    t: list[float]
+    theta: Values
+
+
+class ErrorCurve(_Model):
+    t: list[float]
+    theta: Values = Field(description="theta_sim - theta_exact, rad")
+    samples: int
+    per_period: float | None
+
+
+class Energy(_Model):
+    t: list[float]
+    drift: Values = Field(description="(E - E0)/(m g l)")
+
+
+class Phase(_Model):
+    theta: Values
+    omega: Values
+    t_first: float
+    t_last: float
+    stride: int
+    orbits: int
+
+
+class Frames(_Model):
+    t: list[float]
+    theta: Values
+    omega: Values
+    per_period: float | None
+
+
+class Flags(_Model):
+    left_oscillation_t: float | None
+    nonfinite_t: float | None
+    energy_drift_max: float | None
+    energy_drift_relative: float | None
+    trustworthy: bool
+    warnings: list[str]
+
+
+class SimulateAnswer(_Model):
+    """``GET /api/simulate``: what the page draws; every list at most ``limits.max_points`` long."""
+
+    input: Input
+    units: Units
+    n_steps: int
+    columns: int
+    thinning: Literal["none", "min/max per column"]
+    points: int
+    t: list[float]
+    theta: Values
+    omega: Values
+    exact: Curve = Field(description="the exact motion, drawn with the same column rule")
+    error: ErrorCurve
+    energy: Energy
+    phase: Phase
+    frames: Frames
+    flags: Flags
+    period: PeriodWithEstimate
+
+
+class ConvergenceRow(_Model):
+    step: float
+    estimate: Estimate | None
+    reason: str | None
+
+
+class ConvergenceAnswer(_Model):
+    """``GET /api/convergence``."""
+
+    method: str
+    order: int
+    period: PeriodAnswer
+    rows: list[ConvergenceRow]
+
+
+class ErrorDetail(_Model):
+    field: str
+    value: int | float | str | None = Field(description="as typed")
+    allowed: str
+    message: str = Field(description="one line: '<field> = <value> is not allowed: must be <allowed>'")
+
+
+class ErrorAnswer(_Model):
+    """Status 422: the first bad parameter."""
+
+    error: ErrorDetail

@@ -1,0 +1,129 @@
+"""The explorer's query parameters: text in, checked values out.
+
+Each value is read by the CLI's own parsers (:mod:`pendulab.inputs`), so a value is
+judged the same way in the page and in a terminal; a bad one raises
+:class:`pendulab.errors.InputError` naming the field, the value as typed and the allowed
+range. The work a request may cause is bounded by :mod:`pendulab.web.limits`.
+"""
+from __future__ import annotations
+
+import math
+from collections.abc import Mapping
+from typing import Any
+
+from .. import inputs
+from ..cases import G_TEXT, G
+from ..errors import InputError
+from ..methods import Method
+from . import limits
+
+#: Gravity presets, m/s^2. Earth: standard gravity (the coursework's g); Moon and
+#: Jupiter: NASA Planetary Fact Sheets (surface gravity, equatorial for Jupiter).
+G_PRESETS = {"earth": G, "moon": 1.62, "jupiter": 24.79}
+
+#: The default view: problem 5's pendulum (l = 3.5 m, alpha = 4 pi/5 = 144 deg).
+DEFAULTS = {
+    "length": "3.5",
+    "amplitude": "144",
+    "unit": "deg",
+    "step": "1e-3",
+    "t_max": "20",
+    "g": G_TEXT,
+    "method": "taylor2",
+}
+
+ALLOWED = {
+    "length": "a finite number > 0 (m), such as 3.5",
+    "amplitude": "an angle in [0, pi) rad, such as 0.785, pi/4, 4pi/5 or 45deg",
+    "step": "a finite number > 0 (s), such as 1e-3",
+    "t_max": "a finite number > 0 (s), such as 20",
+    "g": f"a finite number > 0 (m/s^2), such as {G_TEXT}",
+    "unit": "rad or deg: the unit of a plain-number amplitude",
+}
+
+#: 10^-1 .. 10^-4, four per decade: the range of problem 3(c) and a decade above.
+DEFAULT_STEPS = tuple(float(10 ** (-k / 4)) for k in range(4, 17))
+
+
+def text(params: Mapping[str, str], name: str, default: str | None = None) -> str:
+    """The raw text of ``name``; missing (or empty) without a default is an error."""
+    raw = params.get(name)
+    if raw is None or not str(raw).strip():
+        if default is not None:
+            return default
+        raise InputError(name, "(missing)", ALLOWED.get(name, "a value"))
+    return str(raw)
+
+
+def positive(params: Mapping[str, str], name: str, default: str | None = None) -> float:
+    """A number > 0 by :func:`pendulab.inputs.positive`, the CLI's parser."""
+    return float(inputs.positive(name, text(params, name, default), ALLOWED[name]))
+
+
+def amplitude(params: Mapping[str, str]) -> float:
+    """``alpha`` in radians from ``0.785``, ``4pi/5`` or ``144deg`` (the CLI's forms).
+
+    ``unit=deg`` reads a plain number as degrees (``144``); an error then shows the
+    amplitude as typed, without the unit appended.
+    """
+    unit = str(params.get("unit") or "rad").strip().lower()
+    if unit not in ("rad", "deg"):
+        raise InputError("unit", inputs.shown(unit), ALLOWED["unit"])
+    s = text(params, "amplitude")
+    typed = s.strip() + "deg" if unit == "deg" and inputs.is_number(s) else s
+    try:
+        return float(inputs.angle("amplitude", typed))
+    except InputError as exc:
+        raise InputError("amplitude", inputs.shown(s.strip()) if s.strip() else exc.value, exc.allowed) from None
+
+
+def method(params: Mapping[str, str]) -> Method:
+    """The integrator by :func:`pendulab.methods.resolve`: the registry as it is now."""
+    return inputs.method("method", text(params, "method", "taylor2"))
+
+
+def points(params: Mapping[str, str], default: int, most: int) -> int:
+    """``points`` in ``[2, most]``."""
+    return inputs.integer("points", text(params, "points", str(default)), 2, most)
+
+
+def pendulum(params: Mapping[str, str]) -> dict[str, Any]:
+    """``length``, ``amplitude`` (rad) and ``g`` from a query; raises InputError."""
+    return {
+        "length": positive(params, "length"),
+        "amplitude": amplitude(params),
+        "g": positive(params, "g", DEFAULTS["g"]),
+    }
+
+
+def simulation(params: Mapping[str, str]) -> dict[str, Any]:
+    """All inputs of a simulation: pendulum, ``step``, ``t_max``, ``method``; its work within the limits."""
+    from ..taylor import step_count
+
+    p = pendulum(params)
+    p["step"] = positive(params, "step")
+    p["t_max"] = positive(params, "t_max")
+    m = method(params)
+    p["method"] = m.name
+    if not p["step"] < p["t_max"]:
+        raise InputError("step", inputs.shown(text(params, "step")), f"< t_max = {p['t_max']:g} s")
+    limits.check_run(p["t_max"], p["step"], m, text(params, "step"), text(params, "t_max"))
+    step_count(0.0, p["t_max"], p["step"])  # finite: within the limits
+    return p
+
+
+def step_list(params: Mapping[str, str]) -> list[float]:
+    """``steps``: 1 to :data:`pendulab.web.limits.MAX_SWEEP` steps > 0, comma-separated; the default list when absent."""
+    s = params.get("steps")
+    if s is None or not str(s).strip():
+        return list(DEFAULT_STEPS)
+    allowed = f"a comma-separated list of 1 to {limits.MAX_SWEEP} steps > 0 (s)"
+    parts = inputs.items("steps", s, allowed, max_items=10**6)
+    if len(parts) > limits.MAX_SWEEP:
+        raise InputError("steps", f"{len(parts)} values", allowed)
+    return [float(x) for x in inputs.parse_list("steps", s, inputs.positive, allowed, limits.MAX_SWEEP)]
+
+
+def unusual(length: float, g: float) -> str:
+    """``"length"`` or ``"g"``: the one further, in decades, from an ordinary pendulum (1 m, 9.81 m/s^2)."""
+    return "length" if abs(math.log10(length)) >= abs(math.log10(g / G)) else "g"

@@ -1,0 +1,205 @@
+"""What the explorer draws of a simulation: which steps are kept, in O(points) memory.
+
+``theta(t)`` and the energy drift keep each column's smallest and largest value (the
+min/max reduction of Jugel et al., "M4: A Visualization-Oriented Time Series Data
+Aggregation", PVLDB 7(10), 2014); the phase portrait keeps whole orbits; the animation and
+the global error keep evenly spaced steps. :func:`simulate_arrays` runs the one streamed
+pass (:func:`pendulab.web._view.scan`) in chunks, checking between chunks whether the
+request is still wanted.
+"""
+from __future__ import annotations
+
+import math
+import threading
+from collections.abc import Mapping
+from typing import Any
+
+import numpy as np
+
+from . import limits
+
+#: Phase-portrait points per exact period, and at most this many in all.
+PHASE_PER_PERIOD, PHASE_POINTS = 256, 4000
+#: Animation samples: at most this many (16 per period where they fit).
+FRAME_POINTS = 8000
+#: Global-error samples (the exact motion is evaluated there): 64 per period, at most this many.
+ERROR_POINTS = 20000
+#: Steps of (3) run between two looks at the cancel flag (tens of milliseconds).
+CHUNK_WORK = 1 << 20
+
+
+class Cancelled(Exception):
+    """The request's client has gone: the work stopped between two chunks."""
+
+
+def finite_list(a: np.ndarray) -> list:
+    """A JSON list; a non-finite value (a blown-up simulation) becomes ``null``."""
+    out = a.tolist()
+    if not np.all(np.isfinite(a)):
+        out = [x if math.isfinite(x) else None for x in out]
+    return out
+
+
+def thin(n_points: int, points: int) -> np.ndarray:
+    """Indices ``0, k, 2k, ...`` plus the last one: at most ``points`` of ``n_points``, evenly spaced."""
+    if n_points <= points:
+        return np.arange(n_points)
+    stride = math.ceil((n_points - 1) / (points - 1))
+    idx = np.arange(0, n_points, stride)
+    if idx[-1] != n_points - 1:
+        idx = np.append(idx, n_points - 1)
+    return idx
+
+
+def uniform(n: int, stride: int) -> np.ndarray:
+    idx = np.arange(0, n + 1, stride, dtype=np.int64)
+    return idx if idx[-1] == n else np.append(idx, n)
+
+
+def phase_samples(n: int, steps_per_period: float) -> tuple[np.ndarray, int, int]:
+    """Steps drawn in the phase portrait: a curve, never chords across the orbit.
+
+    About :data:`PHASE_PER_PERIOD` points per exact period (stride ``k``). When the whole
+    run at that stride exceeds :data:`PHASE_POINTS`, whole orbits (1.05 periods each) are
+    taken at evenly spread times, first and last included, so that a drift of the orbit
+    still shows. Returns ``(steps, stride, windows)``.
+    """
+    # A run shorter than a period (T = 1e150 s) has its points spread over the run instead.
+    k = max(1, int(min(steps_per_period, 2.0 * n) // PHASE_PER_PERIOD))
+    if n // k + 1 <= PHASE_POINTS:
+        return uniform(n, k), k, 1
+    span = min(n, int(math.ceil(1.05 * steps_per_period)))
+    per = span // k + 1
+    windows = max(2, PHASE_POINTS // per)
+    starts = np.round(np.linspace(0, n - span, windows)).astype(np.int64)
+    idx = (starts[:, None] + k * np.arange(per, dtype=np.int64)[None, :]).ravel()
+    return idx, k, windows
+
+
+def frame_samples(n: int, steps_per_period: float, per_period: int = 16, most: int | None = None) -> np.ndarray:
+    """Evenly spaced steps, ``per_period`` a period where at most ``most`` (:data:`FRAME_POINTS`) fit.
+
+    The animation interpolates between them; the global error is evaluated at 64 a period.
+    """
+    most = FRAME_POINTS if most is None else most
+    k = max(1, int(min(steps_per_period, 2.0 * n) // per_period), math.ceil(n / (most - 1)))
+    return uniform(n, min(k, n))
+
+
+def minmax(bins: np.ndarray, values: np.ndarray, nb: int) -> np.ndarray:
+    """Positions of the smallest and largest finite value of each bin, in order (M4's min/max)."""
+    ok = np.flatnonzero(np.isfinite(values))
+    if len(ok) <= 2 * nb:
+        return ok
+    order = ok[np.lexsort((values[ok], bins[ok]))]
+    b = bins[order]
+    first = np.flatnonzero(np.r_[True, b[1:] != b[:-1]])
+    last = np.r_[first[1:] - 1, len(order) - 1]
+    return np.unique(np.r_[order[first], order[last]])
+
+
+def columns(i_lo: np.ndarray, v_lo: np.ndarray, i_hi: np.ndarray, v_hi: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """Every column's kept steps and values, in time order (a column of NaN keeps none)."""
+    idx = np.r_[i_lo, i_hi]
+    val = np.r_[v_lo, v_hi]
+    ok = idx >= 0
+    idx, val = idx[ok], val[ok]
+    idx, first = np.unique(idx, return_index=True)
+    return idx, val[first]
+
+
+def exact_overlay(length: float, alpha: float, g: float, period: float, t_end: float, nb: int) -> tuple[np.ndarray, np.ndarray]:
+    """The exact motion (:func:`pendulab.motion.exact_motion`) drawn with the same min/max rule.
+
+    Between two turning points ``theta`` is monotone, so in each of ``nb`` time columns its
+    extremes are at the column's ends or at a turn ``t = k T/2`` (``theta = (-1)^k alpha``):
+    the columns' ends plus the first two turns of each column give its exact extent.
+    """
+    from ..motion import exact_motion
+
+    edges = np.linspace(0.0, t_end, nb + 1)
+    theta_edges = exact_motion(length, alpha, edges, g).theta
+    half = 0.5 * period
+    k0 = np.ceil(edges[:-1] / half)
+    k0 = np.where(k0 < 1, 1, k0)
+    ts, ths = [edges], [theta_edges]
+    if alpha > 0:
+        for k in (k0, k0 + 1):
+            t = k * half
+            inside = t < edges[1:]
+            ts.append(t[inside])
+            ths.append(np.where(np.mod(k[inside], 2) == 0, alpha, -alpha))
+    t = np.concatenate(ts)
+    th = np.concatenate(ths)
+    order = np.argsort(t, kind="stable")
+    return t[order], th[order]
+
+
+def gapped(values: np.ndarray, idx: np.ndarray, stride: int) -> list:
+    """A JSON list with ``null`` between samples that are not consecutive (plotly breaks the line)."""
+    out = finite_list(values)
+    if len(idx) < 2:
+        return out
+    breaks = np.flatnonzero(np.diff(idx) > stride) + 1  # the last step may follow closer
+    for b in breaks[::-1].tolist():
+        out.insert(b, None)
+    return out
+
+
+def simulate_arrays(p: Mapping[str, Any], points: int, stop: threading.Event | None = None) -> dict[str, Any]:
+    """One streamed pass over the simulation: what the page draws, in O(points) memory.
+
+    ``theta(t)``: the min and max of ``theta`` in each of ``points // 2`` columns of steps
+    (every step when ``n + 1 <= points``); the energy drift likewise; the phase portrait
+    and animation samples; the first step that left the oscillation or went non-finite.
+    The steps run in chunks of :data:`CHUNK_WORK` steps of (3); when ``stop`` is set
+    between two chunks, raises :class:`Cancelled`.
+    """
+    from ..methods import resolve
+    from ..period import agm_period
+    from ..taylor import method_code, step_count
+    from ._view import scan
+
+    code, order = method_code(p["method"])
+    n = step_count(0.0, p["t_max"], p["step"])
+    c = -p["g"] / p["length"]
+    h = p["step"]
+    period = float(agm_period(p["length"], p["amplitude"], p["g"]))
+    per = period / h
+    nb = max(1, min(points // 2, n + 1))
+    phase_idx, phase_stride, windows = phase_samples(n, per)
+    frame_idx = frame_samples(n, per)
+    error_idx = frame_samples(n, per, 64, ERROR_POINTS)
+    samples = np.union1d(np.union1d(phase_idx, frame_idx), error_idx)
+    s_th, s_om = np.empty(len(samples)), np.empty(len(samples))
+    i_lo, i_hi, e_i_lo, e_i_hi = (np.full(nb, -1, dtype=np.int64) for _ in range(4))
+    th_lo, e_lo = np.full(nb, np.inf), np.full(nb, np.inf)
+    th_hi, e_hi = np.full(nb, -np.inf), np.full(nb, -np.inf)
+    om_lo, om_hi = np.empty(nb), np.empty(nb)
+    z = np.array([p["amplitude"], 0.0])
+    # col, first step of the next column (ceil((n+1)/nb)), next sample, left, bad
+    where = np.array([0, (n + 1 + nb - 1) // nb, 0, -1, -1], dtype=np.int64)
+    chunk = max(1, int(CHUNK_WORK / limits.weight(resolve(p["method"]))))
+    for i0 in range(0, n + 1, chunk):
+        if stop is not None and stop.is_set():
+            raise Cancelled
+        scan(code, order, p["amplitude"], c, h, n, i0, min(n + 1, i0 + chunk), z, where, samples, s_th, s_om,
+             i_lo, i_hi, th_lo, th_hi, om_lo, om_hi, e_i_lo, e_i_hi, e_lo, e_hi)
+    left, bad = int(where[3]), int(where[4])
+    idx, theta = columns(i_lo, th_lo, i_hi, th_hi)
+    _, omega = columns(i_lo, om_lo, i_hi, om_hi)
+    e_idx, drift = columns(e_i_lo, e_lo, e_i_hi, e_hi)
+    pos = np.searchsorted(samples, phase_idx)
+    fpos = np.searchsorted(samples, frame_idx)
+    epos = np.searchsorted(samples, error_idx)
+    return {
+        "n": n, "columns": nb, "period": period,
+        "idx": idx, "theta": theta, "omega": omega,
+        "energy_idx": e_idx, "energy": drift,
+        "energy_max": float(np.max(np.abs(drift))) if len(drift) else math.nan,
+        "phase_idx": phase_idx, "phase_stride": phase_stride, "phase_windows": windows,
+        "phase_theta": s_th[pos], "phase_omega": s_om[pos],
+        "frame_idx": frame_idx, "frame_theta": s_th[fpos], "frame_omega": s_om[fpos],
+        "error_idx": error_idx, "error_theta": s_th[epos],
+        "left": left, "bad": bad,
+    }

@@ -1,0 +1,278 @@
+"""The explorer's answers: checked parameters in, JSON-ready dicts (or CSV text) out.
+
+A presenter, like the CLI: it reads the query with :mod:`pendulab.web.parameters`, calls
+:func:`pendulab.crossing.estimate_period`, :func:`pendulab.period.agm_period` and the
+streamed pass of :mod:`pendulab.web.sampling`, and renders their results; the shape of
+each answer is :mod:`pendulab.web.models`. Every bad input raises
+:class:`pendulab.errors.InputError` (the route turns it into status 422 naming the field
+and the allowed range). Nothing here touches HTTP, so the tests call these functions
+directly as well as through the app.
+"""
+from __future__ import annotations
+
+import math
+import threading
+from collections.abc import Iterator, Mapping
+from typing import Any
+
+import numpy as np
+
+from .. import inputs
+from ..cases import PROBLEM5
+from ..errors import InputError, PendulabError
+from ..methods import resolve
+from . import limits, parameters, sampling
+from .sampling import Cancelled, finite_list
+
+__all__ = ["Cancelled", "config_view", "convergence_view", "period_endpoint", "simulate_view", "trajectory_csv", "warm"]
+
+#: An energy drift above this fraction of the swing's energy is flagged.
+ENERGY_WARN = 0.01
+#: Rows computed per block of the streamed CSV.
+CSV_BLOCK = 8192
+
+
+def _num(x: float) -> float | None:
+    return float(x) if math.isfinite(x) else None
+
+
+def period_view(length: float, amplitude: float, g: float) -> dict[str, Any]:
+    """The exact (AGM, equations (7)-(8)) and small-angle periods."""
+    from ..period import agm_period, small_angle_period
+
+    return {
+        "length": length,
+        "amplitude": amplitude,
+        "amplitude_deg": math.degrees(amplitude),
+        "g": g,
+        "exact": float(agm_period(length, amplitude, g)),
+        "small_angle": float(small_angle_period(length, g)),
+    }
+
+
+def estimate_view(length: float, amplitude: float, step: float, g: float, method: str) -> dict[str, Any]:
+    """The period estimated from a streamed simulation, or why there is none.
+
+    Returns ``{"estimate": {...}}`` with the bracket ``[t_j, t_{j+1}]``, its midpoint, the
+    linear and inverse-cubic (problem 3(d)) estimates and their absolute errors against
+    the AGM period, or ``{"estimate": None, "reason": "..."}``.
+    """
+    from ..crossing import default_t_max, estimate_period
+    from ..period import agm_period
+
+    exact = float(agm_period(length, amplitude, g))
+    span = default_t_max(exact, step)
+    if reason := limits.search_too_long(span, step, exact, resolve(method)):
+        return {"estimate": None, "reason": reason}  # the period is too long for this step: say so, keep the rest
+    try:
+        e = estimate_period(length, amplitude, step, g=g, method=method)
+    except PendulabError as exc:  # no return, went over the top, amplitude 0: a result, not a bad request
+        return {"estimate": None, "reason": " ".join(str(exc).split())}
+    mid = 0.5 * (e.bracket[0] + e.bracket[1])
+    return {
+        "estimate": {
+            "step": e.step,
+            "method": e.method,
+            "j": e.j,
+            "bracket": [e.bracket[0], e.bracket[1]],
+            "bracket_mid": mid,
+            "linear": _num(e.linear),
+            "cubic": _num(e.cubic),
+            "cubic_error_estimate": _num(e.cubic_error_estimate),
+            "errors": {
+                "bracket_mid": abs(mid - e.exact),
+                "linear": _num(e.linear_error),
+                "cubic": _num(e.cubic_error),
+            },
+            "exact": e.exact,
+        },
+        "reason": None,
+    }
+
+
+def _flags(p: Mapping[str, Any], sim: Mapping[str, Any]) -> dict[str, Any]:
+    """What makes a simulation untrustworthy, as facts with their times, and one line each."""
+    h, alpha = p["step"], p["amplitude"]
+    swing = 1.0 - math.cos(alpha)  # the oscillation's energy, E(alpha) - E(0), in m g l
+    left = sim["left"] * h if sim["left"] >= 0 else None
+    bad = sim["bad"] * h if sim["bad"] >= 0 else None
+    drift = sim["energy_max"]
+    rel = drift / swing if swing > 0 and math.isfinite(drift) else None
+    warnings = []
+    if bad is not None:
+        warnings.append(f"the simulation blew up: theta or theta' is no longer a finite number from t = {bad:.6g} s")
+    if left is not None:
+        warnings.append(
+            f"the simulated pendulum went over the top (|theta| >= 180 deg) at t = {left:.6g} s, which the real one "
+            f"released at rest below 180 deg never does: step h = {h:g} s is too large for this method"
+        )
+    if rel is not None and rel > ENERGY_WARN and bad is None:
+        warnings.append(
+            f"the energy drifted by up to {100 * rel:.3g} % of the swing's energy m g l (1 - cos alpha): "
+            "the simulated motion is not the pendulum's; use a smaller step or another method"
+        )
+    return {
+        "left_oscillation_t": left, "nonfinite_t": bad,
+        "energy_drift_max": _num(drift) if drift == drift else None,
+        "energy_drift_relative": _num(rel) if rel is not None else None,
+        "trustworthy": not warnings, "warnings": warnings,
+    }
+
+
+def simulate_view(params: Mapping[str, str], stop: threading.Event | None = None) -> dict[str, Any]:
+    """``GET /api/simulate``: what the page draws, the exact motion and period, estimates, flags.
+
+    ``t, theta``: the min and max of ``theta`` in each of ``points // 2`` columns of steps, in
+    time order (every step when they fit), so a plot of them reaches every extreme of the
+    trajectory. ``phase``: the state about 256 times per period, whole orbits (``null``
+    between them). ``frames``: the state 16 times per period (at most 8000) for the
+    animation. ``exact``: the exact motion with the same column rule; ``error``:
+    ``theta_sim - theta_exact`` 64 times per period (at most 20 000; min/max per column); ``energy``: the
+    drift ``(E - E0)/(m g l)`` at every step, min/max per column. ``stop`` set while the
+    simulation runs raises :class:`Cancelled`.
+    """
+    from ..motion import exact_motion
+
+    p = parameters.simulation(params)
+    points = parameters.points(params, limits.DEFAULT_PLOT_POINTS, limits.MAX_POINTS)
+    est = estimate_view(p["length"], p["amplitude"], p["step"], p["g"], p["method"])
+    sim = sampling.simulate_arrays(p, points, stop)
+    h, n, nb = p["step"], sim["n"], sim["columns"]
+    f_idx, e_idx = sim["frame_idx"], sim["error_idx"]
+    f_t, e_t = h * f_idx, h * e_idx
+    with np.errstate(invalid="ignore", over="ignore"):  # a blown-up simulation: inf - x, shown as null
+        err = sim["error_theta"] - exact_motion(p["length"], p["amplitude"], e_t, p["g"]).theta
+    keep = sampling.minmax((e_idx * nb) // (n + 1), err, nb)
+    ex_t, ex_th = sampling.exact_overlay(p["length"], p["amplitude"], p["g"], sim["period"], n * h, nb)
+    ph_t = h * sim["phase_idx"]
+    return {
+        "input": {k: p[k] for k in ("length", "amplitude", "step", "t_max", "g", "method")}
+        | {"amplitude_deg": math.degrees(p["amplitude"])},
+        "units": {"t": "s", "theta": "rad", "omega": "rad/s", "period": "s", "energy": "m g l"},
+        "n_steps": n,
+        "columns": nb,
+        "thinning": "none" if len(sim["idx"]) == n + 1 else "min/max per column",
+        "points": len(sim["idx"]),
+        "t": finite_list(h * sim["idx"]),
+        "theta": finite_list(sim["theta"]),
+        "omega": finite_list(sim["omega"]),
+        "exact": {"t": ex_t.tolist(), "theta": finite_list(ex_th)},
+        "error": {"t": e_t[keep].tolist(), "theta": finite_list(err[keep]), "samples": len(e_idx),
+                  "per_period": sim["period"] / (h * (e_idx[1] - e_idx[0])) if len(e_idx) > 1 else None},
+        "energy": {"t": finite_list(h * sim["energy_idx"]), "drift": finite_list(sim["energy"])},
+        "phase": {
+            "theta": sampling.gapped(sim["phase_theta"], sim["phase_idx"], sim["phase_stride"]),
+            "omega": sampling.gapped(sim["phase_omega"], sim["phase_idx"], sim["phase_stride"]),
+            "t_first": float(ph_t[0]), "t_last": float(ph_t[-1]),
+            "stride": sim["phase_stride"], "orbits": sim["phase_windows"],
+        },
+        "frames": {
+            "t": f_t.tolist(), "theta": finite_list(sim["frame_theta"]), "omega": finite_list(sim["frame_omega"]),
+            "per_period": sim["period"] / (h * (f_idx[1] - f_idx[0])) if len(f_idx) > 1 else None,
+        },
+        "flags": _flags(p, sim),
+        "period": period_view(p["length"], p["amplitude"], p["g"]) | est,
+    }
+
+
+def trajectory_csv(params: Mapping[str, str]) -> tuple[Iterator[str], str]:
+    """``GET /api/trajectory.csv``: the trajectory at full precision (thinned only past ``points``).
+
+    Parses at once (a bad input raises here); returns the file name and a generator of
+    text blocks, each computed when asked for, so the server holds one block at a time.
+    """
+    p = parameters.simulation(params)
+    points = parameters.points(params, limits.MAX_CSV_ROWS, limits.MAX_CSV_ROWS)
+    name = f"pendulab_l{p['length']:g}_a{math.degrees(p['amplitude']):.6g}deg_h{p['step']:g}_{p['method']}.csv"
+    return csv_blocks(p, points), name
+
+
+def csv_blocks(p: Mapping[str, Any], points: int) -> Iterator[str]:
+    """The CSV text in blocks of :data:`CSV_BLOCK` rows: header first, then the kept steps."""
+    from ..taylor import method_code, step_count
+
+    code, order = method_code(p["method"])
+    n = step_count(0.0, p["t_max"], p["step"])
+    idx = sampling.thin(n + 1, points)
+    stride = int(idx[1] - idx[0]) if len(idx) > 1 else 1
+    h, c = p["step"], -p["g"] / p["length"]
+    yield "t_s,theta_rad,omega_rad_per_s\n" + f"{0.0!r},{p['amplitude']!r},{0.0!r}\n"
+    state = (p["amplitude"], 0.0)
+    i = 0
+    while i < n:
+        i1 = min(n, i + stride * CSV_BLOCK)
+        state, block = _csv_block(code, order, state, c, h, i, i1, stride, n)
+        i = i1
+        yield block
+
+
+def _csv_block(code: int, order: int, state: tuple[float, float], c: float, h: float,
+               i0: int, i1: int, stride: int, n: int) -> tuple[tuple[float, float], str]:
+    from ._view import advance
+
+    size = (i1 - i0) // stride + 2
+    z1, z2, ii = np.empty(size), np.empty(size), np.empty(size, dtype=np.int64)
+    a, b, k = advance(code, order, state[0], state[1], c, h, i0, i1, stride, n, z1, z2, ii)
+    t = (h * ii[:k]).tolist()
+    rows = "".join(f"{x!r},{y!r},{z!r}\n" for x, y, z in zip(t, z1[:k].tolist(), z2[:k].tolist()))
+    return (a, b), rows
+
+
+def convergence_view(params: Mapping[str, str], stop: threading.Event | None = None) -> dict[str, Any]:
+    """``GET /api/convergence``: the period estimates and their errors for a list of steps.
+
+    ``stop`` set between two steps raises :class:`Cancelled`.
+    """
+    from ..crossing import default_t_max
+
+    p = parameters.pendulum(params)
+    method = parameters.method(params)
+    steps = sorted(set(parameters.step_list(params)), reverse=True)
+    exact = period_view(p["length"], p["amplitude"], p["g"])
+    largest = parameters.DEFAULT_STEPS[0]
+    if default_t_max(exact["exact"], largest, 0.0) / largest > limits.max_steps(method):
+        # Even the default list's largest step cannot reach the first return: the period is too long.
+        name = parameters.unusual(p["length"], p["g"])
+        raise InputError(
+            name, inputs.shown(parameters.text(params, name, parameters.DEFAULTS["g"])),
+            f"such that the period search (1.5 T + 4h, T = {exact['exact']:.3g} s) fits in "
+            f"{limits.max_steps(method):.3g} steps of {method.name} of h = {largest:g} s",
+        )
+    limits.check_sweep([default_t_max(exact["exact"], h, 0.0) for h in steps], steps, method)
+    rows = []
+    for h in steps:
+        if stop is not None and stop.is_set():
+            raise Cancelled
+        est = estimate_view(p["length"], p["amplitude"], h, p["g"], method.name)
+        rows.append({"step": h} | est)
+    return {"method": method.name, "order": method.order, "period": exact, "rows": rows}
+
+
+def config_view() -> dict[str, Any]:
+    """``GET /api/config``: the methods the library has now, g presets, limits, defaults."""
+    from ..methods import MAX_TAYLOR_ORDER, menu
+
+    return {
+        "methods": [{"name": m.name, "order": m.order, "description": m.description} for m in menu()],
+        # The family taylor:P of the registry, every order (taylor:1 is Euler's method).
+        "family": [{"name": m.name, "order": m.order, "description": m.description + (" (Euler's method)" if m.order == 1 else "")}
+                   for m in (resolve(f"taylor:{p}") for p in range(1, MAX_TAYLOR_ORDER + 1))],
+        "g_presets": parameters.G_PRESETS,
+        "limits": {"max_steps": limits.MAX_WORK, "max_points": limits.MAX_POINTS, "plot_points": limits.DEFAULT_PLOT_POINTS},
+        "defaults": parameters.DEFAULTS,
+        "problem5": {"length": PROBLEM5.l, "amplitude": PROBLEM5.alpha},
+    }
+
+
+def period_endpoint(params: Mapping[str, str]) -> dict[str, Any]:
+    """``GET /api/period``: the exact period of a pendulum."""
+    p = parameters.pendulum(params)
+    return period_view(p["length"], p["amplitude"], p["g"])
+
+
+def warm() -> None:
+    """Run every kernel once on a tiny case: compiled (or loaded from numba's cache) before a visitor waits."""
+    q = {"length": "1", "amplitude": "30deg", "step": "0.05", "t_max": "2", "method": "taylor2"}
+    simulate_view(q)
+    for _ in csv_blocks(parameters.simulation(q), 10):
+        pass
