@@ -40,6 +40,7 @@ BASE = {
     "fit": ["--t-max", "2", "--step", "0.05"],
     "quadrature": ["--n", "1,10"],
     "report": [],
+    "programs": ["--output", "programs"],
     "key": ["--groups", "groups.txt", "--output", "key.json"],
     "serve": ["--host", "127.0.0.1"],
     "approximations": [],

@@ -26,6 +26,7 @@ COMMANDS = {
     "fit": "problems:fit",
     "quadrature": "problems:quadrature",
     "report": "report:report",
+    "programs": "programs:programs",
     "key": "key:key",
     "serve": "serve:serve",
     "approximations": "beyond:approximations",

@@ -1,0 +1,44 @@
+"""Problem 1: g = 4 pi^2 l/T^2 from a measured l and T, and its propagated error.
+
+l = 115.2 cm +- 0.3 cm, T = 2.1536 s +- 2e-4 s.
+"""
+import math
+from decimal import ROUND_HALF_UP, Decimal
+
+L, DL = 1.152, 0.003  # m
+T, DT = 2.1536, 2e-4  # s
+
+def gravity(l, t):
+    return 4 * math.pi**2 * l / t**2  # T = 2 pi sqrt(l/g) solved for g
+
+def propagate(l, dl, t, dt):
+    """1(a): |e_g| <= |dg/dl| dl + |dg/dT| dT and |e_g|/g <= dl/l + 2 dT/T."""
+    dg_dl = 4 * math.pi**2 / t**2
+    dg_dt = -8 * math.pi**2 * l / t**3
+    return dg_dl, dg_dt, abs(dg_dl) * dl + abs(dg_dt) * dt, dl / l + 2 * dt / t
+
+def significant_digits(x, error):
+    """The largest n with error <= 0.5 10^(k-n+1), 10^k the place of x's first digit."""
+    k = math.floor(math.log10(abs(x)))
+    n = 0
+    while error <= 0.5 * 10.0 ** (k - n):  # then n + 1 digits hold too
+        n += 1
+    return n
+
+def solve():
+    g = gravity(L, T)
+    dg_dl, dg_dt, abs_error, rel_error = propagate(L, DL, T, DT)
+    # g grows with l and falls with T: its exact range over the box l +- dl, T +- dT
+    g_min, g_max = gravity(L - DL, T + DT), gravity(L + DL, T - DT)
+    worst = max(g_max - g, g - g_min)
+    n = significant_digits(g, max(abs_error, worst))
+    place = Decimal(10) ** (math.floor(math.log10(g)) - n + 1)
+    g_text = str(Decimal(g).quantize(place, rounding=ROUND_HALF_UP))
+    return g, dg_dl, dg_dt, abs_error, rel_error, g_min, g_max, worst, n, g_text
+
+if __name__ == "__main__":
+    g, dg_dl, dg_dt, abs_error, rel_error, g_min, g_max, worst, n, g_text = solve()
+    print(f"g = {g!r} m/s^2, dg/dl = {dg_dl:.8g}, dg/dT = {dg_dt:.8g}")
+    print(f"1(a) |e_g| <= {abs_error:.4g} m/s^2, |e_g|/g <= {rel_error:.4g}")
+    print(f"1(b) g in [{g_min:.8g}, {g_max:.8g}], worst error {worst:.4g}:",
+          f"{n} significant digits, g = {g_text} m/s^2")

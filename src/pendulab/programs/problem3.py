@@ -1,0 +1,93 @@
+"""Problem 3(b)-(d): the period from the simulation (3) of the group's pendulum.
+
+z2 = theta' changes sign from + to - as the pendulum returns to P = (alpha, 0)
+(Figure 2): T lies in [t_j, t_(j+1)]. A line (3(c)) and an inverse cubic (3(d))
+through the points (z2_k, t_k) around the change estimate the t at which z2 = 0.
+"""
+import math
+import sys
+
+from agm import t_hat
+from length import group_length
+from taylor import taylor
+
+ALPHA = 4 * math.pi / 5
+STEPS = [1e-2, 1e-3, 1e-4]  # 3(c): h = 10^-j, j = 2, 3, 4; 3(d) uses h = 1e-3
+
+def sign_change(z1, z2):
+    """The first j with z2_j > 0 >= z2_(j+1) and z1_(j+1) > 0 (None if none), and
+    the first index where |z1| >= pi: the discrete pendulum went over the top."""
+    for j in range(len(z2) - 1):
+        if abs(z1[j + 1]) >= math.pi:
+            return None, j + 1
+        if z2[j] > 0 >= z2[j + 1] and z1[j + 1] > 0:
+            return j, None
+    return None, None
+
+def inverse_cubic(x, y):
+    """p(0) for the cubic p through (x_k, y_k), k = 0..3, and the error estimate
+    e(0) = f^(4)(xi)/4! (0-x0)(0-x1)(0-x2)(0-x3), f^(4)(xi)/4! ~ y[x0..x4]."""
+    c = list(y)  # Newton's divided differences y[x0], y[x0,x1], ..., y[x0..x4]
+    for k in range(1, 5):
+        for i in range(4, k - 1, -1):
+            c[i] = (c[i] - c[i - 1]) / (x[i] - x[i - k])
+    p = c[3]
+    for k in (2, 1, 0):  # Horner: p(0) = c0 + (0-x0)(c1 + (0-x1)(c2 + (0-x2) c3))
+        p = p * (0.0 - x[k]) + c[k]
+    prod = (0.0 - x[0]) * (0.0 - x[1]) * (0.0 - x[2]) * (0.0 - x[3])
+    # y[x0..x4] = sum_k y_k / prod_(i!=k)(x_k - x_i): rounding each time y_k (half
+    # an ulp) alone moves e(0) by up to this much
+    rounding = abs(prod) * math.fsum(
+        math.ulp(y[k]) / 2 / abs(math.prod(x[k] - x[i] for i in range(5) if i != k))
+        for k in range(5))
+    return {"p0": p, "coef": c, "dd4": c[4], "e0": c[4] * prod, "rounding": rounding}
+
+def period(l, h, exact):
+    """3(c)-(d): the bracket, the zero of the line through j and j+1, and p(0)."""
+    t, z1, z2 = taylor(l, ALPHA, h, 1.5 * exact + 4 * h)
+    j = sign_change(z1, z2)[0]
+    nodes = [j - 1, j, j + 1, j + 2, j - 2]  # four around the change; a fifth for e(0)
+    x, y = [z2[k] for k in nodes], [t[k] for k in nodes]
+    return {"h": h, "j": j, "bracket": (t[j], t[j + 1]), "z2": x, "t": y,
+            "linear": t[j] + h * z2[j] / (z2[j] - z2[j + 1]), **inverse_cubic(x, y)}
+
+def plot_t_max(l, exact, h=0.2):
+    """3(b): 1.25 times the first event of the h = 0.2 simulation over 4 T^: its
+    return to P (T^ if later), or the time it goes over the top; a multiple of h."""
+    t, z1, z2 = taylor(l, ALPHA, h, 4 * exact)
+    j, over = sign_change(z1, z2)
+    if j is not None:
+        event = max(exact, t[j + 1])
+    else:  # over the top at t[over], or neither within 4 T^
+        event = t[over] if over is not None else 4 * exact / 1.25
+    return h * math.ceil(round(1.25 * event / h, 9)), j, over, t
+
+def order(e0, e1, h0, h1):
+    return math.log(e0 / e1) / math.log(h0 / h1)  # e ~ C h^p between two rows
+
+if __name__ == "__main__":
+    l_text = group_length([int(s) for s in sys.argv[1:]] or [262, 407, 634])[2]
+    l = float(l_text)
+    exact = t_hat(l, ALPHA)
+    t_max, j, over, t = plot_t_max(l, exact)
+    print(f"3(b) l = {l_text} m, T^ = {exact!r} s, t_max = {t_max:.6g} s; h = 0.2:",
+          f"T in [{t[j]:.6g}, {t[j + 1]:.6g}]" if j is not None else
+          f"over the top at t = {t[over]:.6g}" if over is not None else "no return")
+    print("3(c)  h       j  bracket        linear              error      p(0)")
+    rows = [period(l, h, exact) for h in STEPS]
+    for r in rows:
+        print(f"{r['h']:6.0e} {r['j']:6d}  {r['bracket'][0]:.4f} {r['bracket'][1]:.4f}",
+              f"{r['linear']!r:<19} {abs(r['linear'] - exact):.3e}  {r['p0']!r}")
+    for a, b in zip(rows, rows[1:]):
+        e0, e1 = abs(a["linear"] - exact), abs(b["linear"] - exact)
+        print(f"     order from h = {a['h']:.0e} to {b['h']:.0e}:",
+              f"{order(e0, e1, a['h'], b['h']):.2f}")
+    r = rows[STEPS.index(1e-3)]
+    print("3(d) h = 1e-3: z2_k, t_k, divided differences (nodes j-1..j+2, j-2)")
+    for k in range(5):
+        print(f"    {r['z2'][k]!r:<24} {r['t'][k]:.3f}  {r['coef'][k]!r}")
+    error = abs(r["p0"] - exact)  # the Taylor method's error in the period
+    small = max(abs(r["e0"]), r["rounding"]) < 1e-3 * error
+    print(f"    p(0) = {r['p0']!r}, e(0) ~ {r['e0']:.3e}",
+          f"(rounding {r['rounding']:.2e}); |p(0) - T^| = {error:.3e}:",
+          "negligible" if small else "not negligible")

@@ -1,0 +1,64 @@
+"""Problem 4: least-squares fit of the Taylor data by (10), normal equations.
+
+l = 3.5 m, alpha = pi/4, h = 0.01 on [0, t_max], t_max = ceil(T^), T^ of (8);
+phi(t) = gamma + a0 sin t + b0 cos t + a1 sin 2t + b1 cos 2t + a2 sin 3t + b2 cos 3t.
+"""
+import math
+from decimal import ROUND_HALF_UP, Decimal
+
+import numpy as np
+from scipy.linalg import cho_factor, cho_solve
+
+from agm import t_hat
+from taylor import taylor
+
+L, ALPHA, H = 3.5, math.pi / 4, 0.01
+NAMES = ["gamma", "a0", "b0", "a1", "b1", "a2", "b2"]
+
+def basis(t):
+    """The design matrix: phi_i(t_j) of (10), one row per point t_j."""
+    t = np.asarray(t)
+    return np.column_stack([np.ones_like(t), np.sin(t), np.cos(t), np.sin(2 * t),
+                            np.cos(2 * t), np.sin(3 * t), np.cos(3 * t)])
+
+def round6(x):
+    """Half away from zero to 6 decimals, decided on the double's exact value."""
+    q = Decimal("1e-6")
+    return np.vectorize(lambda v: float(Decimal(v).quantize(q, ROUND_HALF_UP)))(x)
+
+def normal_equations(t, y):
+    """4(b)-(c): E(c) = sum_j (y_j - sum_i c_i phi_i(t_j))^2 is least where its
+    gradient is 0: A c = r, A_ik = sum_j phi_i(t_j) phi_k(t_j), r_i = sum_j phi_i(t_j)
+    y_j. A = Phi^T Phi is symmetric, positive definite for independent columns."""
+    phi = basis(t)
+    a = phi.T @ phi
+    a = 0.5 * (a + a.T)  # exactly symmetric (BLAS may sum the triangles apart)
+    return round6(a), round6(phi.T @ np.asarray(y))
+
+def fit(t, y):
+    """4(d): the Cholesky factor A = L L^T (L lower triangular with a positive
+    diagonal) exists only for A symmetric positive definite; L L^T c = r gives c."""
+    a, r = normal_equations(t, y)
+    factor = cho_factor(a, lower=True)  # LinAlgError if A is not positive definite
+    coef = cho_solve(factor, r)
+    residuals = np.asarray(y) - basis(t) @ coef
+    return a, r, np.diag(factor[0]), coef, residuals
+
+if __name__ == "__main__":
+    t_max = math.ceil(t_hat(L, ALPHA))
+    t, z1, z2 = taylor(L, ALPHA, H, t_max)
+    print(f"4(a) t_max = {t_max} s, {len(t)} points; the last 10:")
+    for j in range(len(t) - 10, len(t)):
+        print(f"    {j:4d} {t[j]:5.2f} {z1[j]!r}")
+    a, r, diag, coef, res = fit(t, z1)
+    print("4(c) A | r, symmetric:", bool(np.array_equal(a, a.T)))
+    for row, ri in zip(a, r):
+        print("    " + " ".join(f"{v:10.6f}" for v in row) + f" | {ri:.6f}")
+    print(f"     Cholesky: diagonal of L >= {diag.min():.6f} > 0;",
+          f"eigenvalues >= {np.linalg.eigvalsh(a)[0]:.6f} > 0")
+    for name, c in zip(NAMES, coef):
+        print(f"4(d) {name:5s} = {c:.10g}")
+    j = int(np.argmax(np.abs(res)))
+    print(f"     sum of squared deviations {math.fsum(res**2):.6e}")
+    print(f"     max |z1_j - phi(t_j)| = {abs(res[j]):.4e} at t = {t[j]:.2f}:",
+          "below" if abs(res[j]) < 1e-5 else "not below", "1e-5")

@@ -1,0 +1,50 @@
+"""Problem 5: the period integral (1) by the 3-point Gauss rule (11), composite.
+
+T = 4 sqrt(l/(2g)) int_0^alpha dtheta / sqrt(cos theta - cos alpha), l = 3.5 m,
+alpha = 4 pi/5; errors against T^ of (8). 5(a): the trapezoidal and Simpson rules
+need f(alpha), which is infinite; the nodes of (11) are inside the subintervals.
+"""
+import math
+
+import numpy as np
+
+from agm import G, t_hat
+
+L, ALPHA = 3.5, 4 * math.pi / 5
+
+def integrand(theta):
+    """1/sqrt(cos theta - cos alpha), with cos x - cos y = 2 sin((y+x)/2) sin((y-x)/2):
+    alpha - theta is exact near alpha, where cos theta - cos alpha would lose digits."""
+    return 1 / np.sqrt(2 * np.sin((ALPHA + theta) / 2) * np.sin((ALPHA - theta) / 2))
+
+def gauss3(f, a, b, n):
+    """S_n: rule (11) on each of n equal subintervals [a_i, b_i] of [a, b], summed:
+    Q_i = (b_i - a_i)/18 [5 f(m - sqrt(3/5) mu) + 8 f(m) + 5 f(m + sqrt(3/5) mu)],
+    m = (a_i + b_i)/2, mu = (b_i - a_i)/2 (Gauss-Legendre, exact to degree 5)."""
+    h = (b - a) / n
+    m = a + (np.arange(n) + 0.5) * h  # the midpoints
+    d = math.sqrt(3 / 5) * h / 2
+    return float(h / 18 * np.sum(5 * f(m - d) + 8 * f(m) + 5 * f(m + d)))
+
+def period(n):
+    return 4 * math.sqrt(L / (2 * G)) * gauss3(integrand, 0.0, ALPHA, n)
+
+def table(exact):
+    """5(b)-(d): n = 1, 10, ..., 10^5, the period by S_n, its error, and the rate p
+    of error ~ n^(-p) from n/10 to n."""
+    rows = [(1, period(1), abs(period(1) - exact), None)]
+    for k in range(1, 6):
+        p = period(10**k)
+        e = abs(p - exact)
+        rows.append((10**k, p, e, math.log10(rows[-1][2] / e)))
+    return rows
+
+if __name__ == "__main__":
+    exact = t_hat(L, ALPHA)
+    rows = table(exact)
+    print(f"T^ = {exact!r} s")
+    print(f"5(b) one application: {rows[0][1]!r} s, error {rows[0][2]:.3e}")
+    print(f"5(c) n = 10:          {rows[1][1]!r} s, error {rows[1][2]:.3e}")
+    print("5(d)      n  estimate            error      rate")
+    for n, p, e, rate in rows[1:]:
+        print(f"    {n:6d}  {p!r:<18}  {e:.3e}  {rate:.4f}")
