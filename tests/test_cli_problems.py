@@ -65,10 +65,10 @@ def test_fit_json_and_plot(cli, tmp_path):
 def test_quadrature_json(cli):
     data = cli("quadrature", "--n", "1,10,100", "--json").json
     exact = agm_period(3.5, 4 * math.pi / 5, iterations=7)
-    assert data["exact"] == exact
+    assert data["t_hat"] == exact
     assert [r["n"] for r in data["rows"]] == [1, 10, 100]
-    assert all(r["error"] == abs(r["period"] - exact) for r in data["rows"])
-    assert "substitution_period" not in data["rows"][0]
+    assert all(r["error"] == abs(r["estimate"] - exact) for r in data["rows"])
+    assert "substitution_estimate" not in data["rows"][0]
     sub = cli("quadrature", "--n", "10,100", "--substitution", "--json").json
     assert sub["rows"][1]["substitution_error"] < 1e-13
     assert "5(a)" in cli("quadrature", "--n", "1e1,1e2", "--substitution").out
@@ -81,14 +81,14 @@ def test_quadrature_near_pi_says_t_hat_is_off_and_measures_the_substitution_agai
     ref = float(reference_period(3.5, alpha, dps=60))
     args = ("quadrature", "-l", "3.5", "-a", repr(alpha), "--n", "100,3000", "--graded")
     data = cli(*args, "--json").json
-    assert data["correctly_rounded"] == ref
-    ulps = (data["exact"] - ref) / math.ulp(ref)
+    assert data["period"] == ref
+    ulps = (data["t_hat"] - ref) / math.ulp(ref)
     assert abs(ulps) > 4 and data["t_hat_ulps"] == round(ulps)
     assert data["t_hat_note"] and f"{data['t_hat_ulps']:+d} ulp" in data["t_hat_note"]
-    assert data["substitution_reference"] == "correctly_rounded"
+    assert data["substitution_reference"] == "period"
     for row in data["rows"]:
-        assert row["error"] == abs(row["period"] - data["exact"])  # the plain column: against (8)
-        assert row["substitution_error"] == abs(row["substitution_period"] - ref)
+        assert row["error"] == abs(row["estimate"] - data["t_hat"])  # the plain column: against (8)
+        assert row["substitution_error"] == abs(row["substitution_estimate"] - ref)
     assert data["rows"][1]["substitution_error"] < 64 * 2.0**-52 * ref  # the rule is at rounding level
     lines = cli(*args).out.splitlines()
     assert lines[1] == data["t_hat_note"]
@@ -99,8 +99,8 @@ def test_quadrature_at_4pi_5_has_no_note(cli):
     # 4pi/5: T^ (8) is within the loop's rounding of the period; both columns against T^.
     data = cli("quadrature", "--n", "10,100", "--substitution", "--json").json
     assert data["t_hat_note"] is None and abs(data["t_hat_ulps"]) <= 4
-    assert data["substitution_reference"] == "exact"
-    assert all(r["substitution_error"] == abs(r["substitution_period"] - data["exact"]) for r in data["rows"])
+    assert data["substitution_reference"] == "t_hat"
+    assert all(r["substitution_error"] == abs(r["substitution_estimate"] - data["t_hat"]) for r in data["rows"])
     lines = cli("quadrature", "--n", "10,100", "--substitution").out.splitlines()
     assert len(lines) == 1 + 1 + 2 + 2  # T^, the header, two rows, 5(a) and the rate
     assert lines[1].count("|S_n - T^|") == 2
@@ -119,11 +119,11 @@ def test_quadrature_graded_near_pi_against_mpmath(cli, gap):
     with mpmath.workdps(60):
         kp = mpmath.cos(mpmath.mpf(alpha) / 2)
         ref = float(4 * mpmath.sqrt(1 / mpmath.mpf(9.80665)) * mpmath.ellipk(1 - kp * kp))
-    assert abs(data["rows"][1]["substitution_period"] / ref - 1) < 4e-15
+    assert abs(data["rows"][1]["substitution_estimate"] / ref - 1) < 4e-15
     equal = cli("quadrature", "-l", "1", "-a", repr(alpha), "--n", "3000", "--substitution", "--json").json
-    assert abs(equal["rows"][0]["substitution_period"] / ref - 1) > 1e-3  # what --graded is for
+    assert abs(equal["rows"][0]["substitution_estimate"] / ref - 1) > 1e-3  # what --graded is for
     text = cli("quadrature", "-l", "1", "-a", repr(alpha), "--n", "3000", "--graded").out
-    assert "T ~ S_n (graded)" in text and f"{data['rows'][1]['substitution_period']:.15g}" in text
+    assert "T ~ S_n (graded)" in text and f"{data['rows'][1]['substitution_estimate']:.15g}" in text
 
 
 @pytest.mark.parametrize("args, fragment", [

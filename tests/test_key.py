@@ -36,7 +36,7 @@ def test_group_answers_match_plain_python(key, i):
     assert g["length_text"] == plain.length_text(students)
     length = float(g["length_text"])
     exact = plain.agm7_period(length)
-    assert g["exact"] == pytest.approx(exact, rel=1e-15)
+    assert g["t_hat"] == pytest.approx(exact, rel=1e-15)
     # 3(b): what the h = 0.2 simulation does first, searched over four exact periods.
     event = plain.first_event(length, 0.2, 4 * exact)
     assert g["plot"]["outcome"] == event[0]
@@ -137,7 +137,7 @@ def test_cli_json(groups_file, capsys):
     d = json.loads(capsys.readouterr().out)
     assert [g["students"] for g in d["groups"]] == [[262, 407, 634], [99999, 1]]
     for g in d["groups"]:
-        assert {"students", "length", "exact", "estimates"} <= set(g)
+        assert {"students", "length", "t_hat", "estimates"} <= set(g)
         for e in g["estimates"]:
             assert {"step", "bracket", "linear", "cubic", "cubic_error_estimate"} <= set(e)
 
@@ -149,7 +149,7 @@ def test_cli_csv_and_pdf(groups_file, tmp_path, capsys):
     rows = list(csv.DictReader(io.StringIO("\n".join(line for line in text.splitlines() if not line.startswith("#")))))
     assert [r["students"] for r in rows] == ["262 407 634", "99999 1"]
     assert rows[1]["plot_outcome"] == "leaves" and float(rows[1]["plot_left_at"]) == pytest.approx(4.0)
-    assert float(rows[0]["exact"]) == pytest.approx(plain.agm7_period(2.0800838231), rel=1e-15)
+    assert float(rows[0]["t_hat"]) == pytest.approx(plain.agm7_period(2.0800838231), rel=1e-15)
     assert sum(line.startswith("# problem") for line in text.splitlines()) == 4
     pdf = tmp_path / "key.pdf"
     assert main(["key", "--groups", str(groups_file), "--output", str(pdf)]) == 0

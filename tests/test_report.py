@@ -136,7 +136,7 @@ def test_problem5_numbers(built):
     assert f"{r.single:.12g}" in text
     assert f"{r.composite10:.12g}" in text
     for row in r.rows[1:]:
-        assert f"{row.period:.16g}" in text  # Table 10: 16 digits in both period columns
+        assert f"{row.estimate:.16g}" in text  # Table 10: 16 digits in both period columns
 
 
 def test_agm_section(built):

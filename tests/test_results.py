@@ -87,7 +87,7 @@ def test_nested_results_become_dicts_and_rows_become_a_frame():
     p5 = problem5(ns=(10, 100))
     table = to_frame(p5.rows)
     assert table["n"].tolist() == [10, 100]
-    assert table["period"].tolist() == [r.period for r in p5.rows]
+    assert table["estimate"].tolist() == [r.estimate for r in p5.rows]
 
 
 def test_global_error_frame(tr):

@@ -48,7 +48,7 @@ class PeriodEstimate(Result):
         The interpolation error estimate of ``p(0)`` from the fifth node ``j-2``.
     interpolation : InverseInterpolation
         The table, Newton coefficients and the error estimate's parts.
-    exact : float
+    period : float
         The AGM period (8), iterated to convergence.
     window_t, window_theta, window_omega : ndarray, shape (5,)
         The points ``j-2 .. j+2`` of the simulation (times relative to ``t0``).
@@ -74,7 +74,7 @@ class PeriodEstimate(Result):
     cubic: float
     cubic_error_estimate: float
     interpolation: InverseInterpolation
-    exact: float
+    period: float
     window_t: np.ndarray
     window_theta: np.ndarray
     window_omega: np.ndarray
@@ -82,15 +82,15 @@ class PeriodEstimate(Result):
 
     @property
     def linear_error(self) -> float:
-        return abs(self.linear - self.exact)
+        return abs(self.linear - self.period)
 
     @property
     def dense_error(self) -> float:
-        return abs(self.dense - self.exact)
+        return abs(self.dense - self.period)
 
     @property
     def cubic_error(self) -> float:
-        return abs(self.cubic - self.exact)
+        return abs(self.cubic - self.period)
 
 
 def default_t_max(exact_period: float, step: float, t0: float = 0.0) -> float:
@@ -191,7 +191,7 @@ def estimate_period(
         cubic=interp.value,
         cubic_error_estimate=interp.error_estimate,
         interpolation=interp,
-        exact=float(exact),
+        period=float(exact),
         window_t=t,
         window_theta=z1w.copy(),
         window_omega=z2w.copy(),

@@ -102,8 +102,8 @@ def group_answers(students: Sequence[int]) -> dict[str, Any]:
     }
     estimates = [{
         "step": e.step, "j": e.j, "bracket": list(e.bracket),
-        "linear": e.linear, "linear_error": abs(e.linear - r.exact),
-        "cubic": e.cubic, "cubic_error": abs(e.cubic - r.exact),
+        "linear": e.linear, "linear_error": abs(e.linear - r.t_hat),
+        "cubic": e.cubic, "cubic_error": abs(e.cubic - r.t_hat),
         "cubic_error_estimate": e.cubic_error_estimate,
     } for e in r.estimates]
     ip = r.cubic.interpolation
@@ -117,7 +117,7 @@ def group_answers(students: Sequence[int]) -> dict[str, Any]:
     }
     return {
         "students": list(r.group.numbers), "sum": r.group.total, "digits": r.group.digits,
-        "length": r.group.length, "length_text": r.group.text, "exact": r.exact,
+        "length": r.group.length, "length_text": r.group.text, "t_hat": r.t_hat,
         "plot": plot, "estimates": estimates, "interpolation": interpolation,
     }
 
@@ -137,8 +137,8 @@ def common_answers() -> dict[str, Any]:
         "problem4": {"t_max": p4.t_max, "points": p4.points, "names": list(p4.fit.names),
                      "coefficients": [float(c) for c in p4.fit.coefficients], "ssd": p4.fit.ssd,
                      "max_deviation": p4.fit.max_deviation, "below_tolerance": p4.below_tolerance},
-        "problem5": {"exact": p5.exact, "single": p5.single, "composite10": p5.composite10,
-                     "rows": [{"n": row.n, "period": row.period, "error": row.error, "rate": row.rate}
+        "problem5": {"t_hat": p5.t_hat, "single": p5.single, "composite10": p5.composite10,
+                     "rows": [{"n": row.n, "estimate": row.estimate, "error": row.error, "rate": row.rate}
                               for row in p5.rows]},
     }
 
@@ -154,7 +154,7 @@ def _csv(key: AnswerKey) -> str:
     for name, answers in key.common.items():  # the common answers once, as comment lines
         buf.write(f"# {name}: {json.dumps(answers, allow_nan=False)}\n")
     steps = [e["step"] for e in key.groups[0]["estimates"]] if key.groups else []
-    head = ["students", "length", "exact", "plot_outcome", "plot_bracket_lo", "plot_bracket_hi", "plot_left_at"]
+    head = ["students", "length", "t_hat", "plot_outcome", "plot_bracket_lo", "plot_bracket_hi", "plot_left_at"]
     for h in steps:
         head += [f"{p}_h{h:g}" for p in ("bracket_lo", "bracket_hi", "linear", "linear_error", "cubic",
                                          "cubic_error", "cubic_error_estimate")]
@@ -163,7 +163,7 @@ def _csv(key: AnswerKey) -> str:
     w.writerow(head)
     for g in key.groups:
         b = g["plot"]["bracket"] or [None, None]
-        row = [" ".join(map(str, g["students"])), g["length_text"], repr(g["exact"]), g["plot"]["outcome"],
+        row = [" ".join(map(str, g["students"])), g["length_text"], repr(g["t_hat"]), g["plot"]["outcome"],
                b[0], b[1], g["plot"]["left_at"]]
         for e in g["estimates"]:
             row += [e["bracket"][0], e["bracket"][1], e["linear"], e["linear_error"], e["cubic"],
@@ -188,7 +188,7 @@ def _pdf(key: AnswerKey) -> bytes:
         p = g["plot"]
         shown = (f"[{num(p['bracket'][0], 4)}, {num(p['bracket'][1], 4)}]" if p["outcome"] == "returns"
                  else f"leaves at $t = {num(p['left_at'], 4)}$" if p["outcome"] == "leaves" else "no return")
-        cells = [", ".join(map(str, g["students"])), g["length_text"], num(g["exact"], 12), shown]
+        cells = [", ".join(map(str, g["students"])), g["length_text"], num(g["t_hat"], 12), shown]
         for e in g["estimates"]:
             cells += [num(e["cubic"], 10), sci(e["cubic_error"], 2)]
         ip = g["interpolation"]
@@ -204,7 +204,7 @@ def _pdf(key: AnswerKey) -> bytes:
               f"$max_j |z_(1,j) - tilde(phi)(t_j)| = {sci(c['problem4']['max_deviation'], 4)}$; "
               + ", ".join(f"${_NAMES.get(n, n)} = {num(x, 10)}$"
                           for n, x in zip(c['problem4']['names'], c['problem4']['coefficients']))],
-        ["5", f"$hat(T) = {num(c['problem5']['exact'], 15)}$; one application of (11): "
+        ["5", f"$hat(T) = {num(c['problem5']['t_hat'], 15)}$; one application of (11): "
               f"${num(c['problem5']['single'], 12)}$; $S_10$: ${num(c['problem5']['composite10'], 12)}$; "
               f"rate at $n = {c['problem5']['rows'][-1]['n']}$: {fixed(c['problem5']['rows'][-1]['rate'], 4)}"],
     ]

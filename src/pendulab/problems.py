@@ -52,7 +52,7 @@ class Problem3(Result):
         ``4 pi/5``.
     t_hat : float
         ``T^`` of (8) (7 iterations, as the coursework prescribes) for the group's pendulum;
-        the coursework calls it exact (``exact`` is an alias).
+        the value the coursework calls exact.
     plot : Trajectory
         3(b): ``h = 0.2`` on ``[0, plot_t_max]`` (see :func:`plot_t_max`).
     plot_t_max : float
@@ -100,11 +100,6 @@ class Problem3(Result):
     interpolation_bound: float
     interpolation_ratio: float
     interpolation_negligible: bool
-
-    @property
-    def exact(self) -> float:
-        """``T^``, by the coursework's word: :attr:`t_hat` (see the glossary of "exact")."""
-        return self.t_hat
 
     @property
     def taylor_error(self) -> float:
@@ -361,7 +356,7 @@ class Problem4(Result):
     ----------
     length, amplitude, step : float
         ``l = 3.5``, ``alpha = pi/4``, ``h = 0.01``.
-    period : float
+    t_hat : float
         ``T^`` of (8), 7 iterations.
     t_max : float
         ``ceil(T^)`` (4 for ``l = 3.5``: 401 points, not the original's ``Y_0 .. Y_600``)
@@ -391,7 +386,7 @@ class Problem4(Result):
     length: float
     amplitude: float
     step: float
-    period: float
+    t_hat: float
     t_max: float
     t_max_rule: str
     data: Trajectory
@@ -434,9 +429,9 @@ def problem4(
     from .lsq import TRIG_BASIS, TRIG_LABELS, evaluate, least_squares
     from .motion import exact_motion
 
-    period = agm_period(length, amplitude, g, iterations=7)
+    t_hat = agm_period(length, amplitude, g, iterations=7)
     if t_max is None:
-        t_max, rule = float(math.ceil(period)), f"ceil(T^) = ceil({period:.6f})"
+        t_max, rule = float(math.ceil(t_hat)), f"ceil(T^) = ceil({t_hat:.6f})"
     else:
         rule = "given"
     from . import _validate as v
@@ -471,7 +466,7 @@ def problem4(
         length=float(length),
         amplitude=float(amplitude),
         step=float(step),
-        period=period,
+        t_hat=t_hat,
         t_max=float(t_max),
         t_max_rule=rule,
         data=data,
@@ -504,9 +499,9 @@ class Problem5(Result):
     length, amplitude, g : float
         ``l = 3.5``, ``alpha = 4 pi/5``.
     t_hat : float
-        ``T^`` of (8), 7 iterations: the reference of the plain errors (``exact`` is an alias),
-        and of the substituted ones while it is within rounding of :attr:`correctly_rounded`.
-    correctly_rounded : float
+        ``T^`` of (8), 7 iterations: the reference of the plain errors,
+        and of the substituted ones while it is within rounding of :attr:`period`.
+    period : float
         The period to convergence, correctly rounded (:func:`~pendulab.period.agm_period`):
         the substituted errors' reference where ``T^`` is more than
         ``FIXED_ITERATIONS_ULPS`` from it (within about 3e-14 of pi, where 7 iterations
@@ -531,7 +526,7 @@ class Problem5(Result):
     amplitude: float
     g: float
     t_hat: float
-    correctly_rounded: float
+    period: float
     rule: Rule
     single: float
     composite10: float
@@ -541,32 +536,27 @@ class Problem5(Result):
     graded: bool = False
 
     @property
-    def exact(self) -> float:
-        """``T^``, by the coursework's word: :attr:`t_hat` (see the glossary of "exact")."""
-        return self.t_hat
-
-    @property
     def t_hat_ulps(self) -> int:
         """``T^ - T`` in ulps of the correctly rounded ``T``."""
-        return _ulps_from(self.t_hat, self.correctly_rounded)
+        return _ulps_from(self.t_hat, self.period)
 
     @property
     def t_hat_converged(self) -> bool:
         """``T^`` is within the rounding of the double loop (``FIXED_ITERATIONS_ULPS``) of ``T``."""
-        return _converged(self.t_hat, self.correctly_rounded)
+        return _converged(self.t_hat, self.period)
 
     @property
     def substitution_reference(self) -> float:
         """The substituted errors' reference: ``T^`` (8) where it has converged, else ``T``."""
-        return _substitution_reference(self.t_hat, self.correctly_rounded)
+        return _substitution_reference(self.t_hat, self.period)
 
     @property
     def t_hat_note(self) -> str | None:
         """One line where ``T^`` (8) is not the period to double precision, else None."""
         if self.t_hat_converged:
             return None
-        return (f"T^ (8) differs from the correctly rounded period T = {self.correctly_rounded!r} s by "
-                f"{self.t_hat - self.correctly_rounded:+.3e} s ({self.t_hat_ulps:+d} ulp, more than the "
+        return (f"T^ (8) differs from the correctly rounded period T = {self.period!r} s by "
+                f"{self.t_hat - self.period:+.3e} s ({self.t_hat_ulps:+d} ulp, more than the "
                 f"{FIXED_ITERATIONS_ULPS} ulp of rounding): 7 iterations of (7) have not converged this close to pi, "
                 "so errors against T^ include T^'s own")
 
@@ -632,7 +622,7 @@ def problem5(
         amplitude=float(amplitude),
         g=float(g),
         t_hat=exact,
-        correctly_rounded=rounded,
+        period=rounded,
         rule=GAUSS3,
         single=quadrature_period(length, amplitude, 1, g),
         composite10=quadrature_period(length, amplitude, 10, g),

@@ -297,20 +297,20 @@ class QuadratureRow(Result):
     Attributes
     ----------
     n : int
-    period, error : float
-        ``S_n``-based period of (1) and ``|period - exact|``.
+    estimate, error : float
+        ``S_n``-based estimate of the period (1) and ``|estimate - T^|``.
     rate : float or None
         Observed order ``log(e_prev/e)/log(n/n_prev)`` against the previous row (None
         for the first, or when either error is at the rounding level).
-    substitution_period, substitution_error, substitution_rate : float or None
+    substitution_estimate, substitution_error, substitution_rate : float or None
         The same with the substitution (None when not asked for).
     """
 
     n: int
-    period: float
+    estimate: float
     error: float
     rate: float | None
-    substitution_period: float | None = None
+    substitution_estimate: float | None = None
     substitution_error: float | None = None
     substitution_rate: float | None = None
 

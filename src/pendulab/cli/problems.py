@@ -168,7 +168,7 @@ def fit(length, amplitude, step, t_max, decimals, plot, g, as_json):
                       at=r.fit.argmax_deviation, tolerance=r.tolerance, exact=r.exact_deviation)
     if as_json:
         emit_json({
-            "length": r.length, "amplitude": r.amplitude, "step": r.step, "period": r.period,
+            "length": r.length, "amplitude": r.amplitude, "step": r.step, "t_hat": r.t_hat,
             "t_max": r.t_max, "t_max_rule": r.t_max_rule, "points": r.points,
             "last_points": r.last_points, "round": f.decimals,
             "normal_matrix": f.normal_matrix, "normal_rhs": f.normal_rhs,
@@ -184,7 +184,7 @@ def fit(length, amplitude, step, t_max, decimals, plot, g, as_json):
             "exact_deviation": r.exact_deviation, "taylor_error": r.taylor_error, "answer": answer,
         })
         return
-    click.echo(f"l = {r.length!r}, alpha = {r.amplitude!r}, h = {r.step!r}; T (8) = {r.period!r}; "
+    click.echo(f"l = {r.length!r}, alpha = {r.amplitude!r}, h = {r.step!r}; T^ (8) = {r.t_hat!r}; "
                f"t_max = {r.t_max:g} ({r.t_max_rule}); {r.points} points")
     click.echo("last 10 points (t_j, z1_j):")
     for t, y in r.last_points.tolist():
@@ -234,19 +234,19 @@ def quadrature(length, amplitude, ns, substitution, graded, g, as_json):
     if as_json:
         rows = []
         for row in r.rows:
-            d = {"n": row.n, "period": row.period, "error": row.error, "rate": row.rate}
+            d = {"n": row.n, "estimate": row.estimate, "error": row.error, "rate": row.rate}
             if substitution:
-                d |= {"substitution_period": row.substitution_period, "substitution_error": row.substitution_error,
+                d |= {"substitution_estimate": row.substitution_estimate, "substitution_error": row.substitution_error,
                       "substitution_rate": row.substitution_rate}
             rows.append(d)
         # t_hat_note: one line where T^ (8) is not the period to double precision, else null.
-        extra = {"substitution_reference": "exact" if r.t_hat_converged else "correctly_rounded"} if substitution else {}
-        emit_json({"length": r.length, "amplitude": r.amplitude, "g": r.g, "exact": r.exact,
-                   "correctly_rounded": r.correctly_rounded, "t_hat_ulps": r.t_hat_ulps, "t_hat_note": r.t_hat_note,
+        extra = {"substitution_reference": "t_hat" if r.t_hat_converged else "period"} if substitution else {}
+        emit_json({"length": r.length, "amplitude": r.amplitude, "g": r.g, "t_hat": r.t_hat,
+                   "period": r.period, "t_hat_ulps": r.t_hat_ulps, "t_hat_note": r.t_hat_note,
                    **extra, "single": r.single, "composite10": r.composite10, "graded": graded, "rows": rows,
                    "answer_5a": answer_5a, "rate_explanation": rate_text})
         return
-    click.echo(f"l = {r.length!r}, alpha = {r.amplitude!r}; exact T^ (8) = {r.exact!r} s")
+    click.echo(f"l = {r.length!r}, alpha = {r.amplitude!r}; T^ (8) = {r.t_hat!r} s")
     if r.t_hat_note:
         click.echo(r.t_hat_note)
     # Each error column names its reference: T^ of (8), or T, the correctly rounded period.
@@ -257,9 +257,9 @@ def quadrature(length, amplitude, ns, substitution, graded, g, as_json):
     click.echo(head)
     for row in r.rows:
         rate = f"{row.rate:6.3f}" if row.rate is not None else f"{'':>6}"
-        line = f"{row.n:>10} {row.period:>20.15g} {row.error:>11.3e} {rate}"
+        line = f"{row.n:>10} {row.estimate:>20.15g} {row.error:>11.3e} {rate}"
         if substitution:
-            line += f" {row.substitution_period:>20.15g} {row.substitution_error:>11.3e}"
+            line += f" {row.substitution_estimate:>20.15g} {row.substitution_error:>11.3e}"
         click.echo(line)
     click.echo(f"5(a): {answer_5a}")
     click.echo(rate_text)

@@ -70,7 +70,7 @@ def quadrature_convergence(ax, result, labels: dict[str, str] | None = None):
     ax.loglog(n, GUIDE_OFFSET * err[0] * (n / n[0]) ** -0.5, ":", color="0.4", label=words["guide"])
     sub = [(r.n, r.substitution_error) for r in rows if r.substitution_error is not None]
     if sub:
-        floor = np.finfo(float).eps * result.exact
+        floor = np.finfo(float).eps * result.t_hat
         ns, es = zip(*sub)
         shown = np.maximum(np.array(es), floor)  # an error of exactly 0 sits on the rounding floor
         ax.loglog(ns, shown, "s-", color="C2", markersize=3, label=words["sub"])

@@ -172,11 +172,11 @@ def problem3(doc: Doc, students: Sequence[int]) -> None:
         "p3b.m": g.digits,
         "p3b.count": integer(len(g.digits)),
         "p3b.l": g.text,
-        "p3b.exact": num(r.exact, 12),
+        "p3b.t_hat": num(r.t_hat, 12),
         "p3b.tmax": num(r.plot_t_max, 6),
         "p3b.n": integer(r.plot.n_steps),
         "p3b.h": num(r.plot.step, 3),
-        "p3b.search": num(problems.PLOT_SEARCH_PERIODS * r.exact, 6),
+        "p3b.search": num(problems.PLOT_SEARCH_PERIODS * r.t_hat, 6),
     })
     doc.choose("p3b.len", "one" if len(g.digits) == 1 else "many")
     doc.choose("p3b.tmax", r.plot_outcome)
@@ -186,10 +186,10 @@ def problem3(doc: Doc, students: Sequence[int]) -> None:
         assert est is not None
         doc.set(**{"p3b.tj": num(est.bracket[0], 6), "p3b.tj1": num(est.bracket[1], 6),
                    "p3b.j": integer(est.j), "p3b.j1": integer(est.j + 1),
-                   "p3b.diff": num(est.bracket[0] - r.exact, 3)})
+                   "p3b.diff": num(est.bracket[0] - r.t_hat, 3)})
     elif r.plot_outcome == problems.LEAVES:
         assert r.plot_left_at is not None
-        doc.set(**{"p3b.left": num(r.plot_left_at, 6), "p3b.ratio": num(r.plot_left_at / r.exact, 3)})
+        doc.set(**{"p3b.left": num(r.plot_left_at, 6), "p3b.ratio": num(r.plot_left_at / r.t_hat, 3)})
     doc.figure("p3b_time", lambda ax: time_series(ax, r.plot, title=False))
     doc.figure("p3b_phase", lambda ax: phase_portrait(ax, r.plot))
 
@@ -198,13 +198,13 @@ def problem3(doc: Doc, students: Sequence[int]) -> None:
     for e, lo, co in zip(r.estimates, r.linear_orders, r.cubic_orders):
         rows.append([
             sci(e.step, 1), integer(e.j), f"[{num(e.bracket[0], 8)}, {num(e.bracket[1], 8)}]",
-            num(e.linear, 12), sci(abs(e.linear - r.exact), 3), "—" if lo is None else fixed(lo, 2),
-            num(e.cubic, 12), sci(abs(e.cubic - r.exact), 3), "—" if co is None else fixed(co, 2),
+            num(e.linear, 12), sci(abs(e.linear - r.t_hat), 3), "—" if lo is None else fixed(lo, 2),
+            num(e.cubic, 12), sci(abs(e.cubic - r.t_hat), 3), "—" if co is None else fixed(co, 2),
         ])
     doc.tables["p3c"] = rows
     last = r.estimates[-1]
     orders = [o for o in r.linear_orders if o is not None]
-    doc.set(**{"p3c.order": fixed(orders[-1], 2), "p3c.error": sci(abs(last.linear - r.exact), 2),
+    doc.set(**{"p3c.order": fixed(orders[-1], 2), "p3c.error": sci(abs(last.linear - r.t_hat), 2),
                "p3c.h": sci(last.step, 1), "p3c.omin": fixed(min(orders), 2), "p3c.omax": fixed(max(orders), 2)})
 
     # 3(d): the inverse cubic interpolation with h = 1e-3.
@@ -229,7 +229,7 @@ def problem3(doc: Doc, students: Sequence[int]) -> None:
         "p3d.dd": sci(ip.fourth_difference, 6),
         "p3d.prod": sci(prod, 6),
         "p3d.errest": sci(ip.error_estimate, 3),
-        "p3d.exact": num(r.exact, 15),
+        "p3d.t_hat": num(r.t_hat, 15),
         "p3d.taylor": sci(r.taylor_error, 3),
         "p3d.ratio": sci(r.interpolation_ratio, 1),
         "p3d.c0": num(ip.coefficients[0], 10),
@@ -274,13 +274,13 @@ def problem4(doc: Doc, students: Sequence[int]) -> None:
                                                         alt.fit.coefficients)]
     d = f.definiteness
     doc.set(**{
-        "p4.l": num(r.length, 4), "p4.T": num(r.period, 12), "p4.tmax": num(r.t_max, 6), "p4.h": num(r.step, 3),
+        "p4.l": num(r.length, 4), "p4.T": num(r.t_hat, 12), "p4.tmax": num(r.t_max, 6), "p4.h": num(r.step, 3),
         "p4.n": integer(n), "p4.points": integer(r.points),
         "p4.pivot": num(float(min(d.cholesky_diagonal)) ** 2, 6),
         "p4.lmin": num(d.min_eigenvalue, 6), "p4.lmax": num(d.max_eigenvalue, 6), "p4.cond": num(d.condition_number, 4),
         "p4.pert": sci(d.rounding_perturbation, 2), "p4.shift": sci(f.coefficient_shift, 2),
         "p4.ssd": sci(f.ssd, 6), "p4.maxdev": sci(f.max_deviation, 4), "p4.argmax": num(f.argmax_deviation, 6),
-        "p4.omega": num(2 * math.pi / r.period, 6), "p4.exactdev": sci(r.exact_deviation, 3),
+        "p4.omega": num(2 * math.pi / r.t_hat, 6), "p4.exactdev": sci(r.exact_deviation, 3),
         "p4.exactat": num(r.exact_deviation_at, 6), "p4.taylor": sci(r.taylor_error, 3),
         "p4.tol": sci(r.tolerance, 1),
         "p4.alt.tmax": num(alt.t_max, 6), "p4.alt.points": integer(alt.points), "p4.alt.n": integer(alt.points - 1),
@@ -307,8 +307,8 @@ def problem5(doc: Doc, students: Sequence[int]) -> None:
                 *_c("cases", "PROBLEM5", "PROBLEM5_N"))
     rows = [row for row in r.rows if row.n >= 10]
     doc.tables["p5d"] = [[
-        integer(row.n), num(row.period, 16), sci(row.error, 3), "—" if row.rate is None else fixed(row.rate, 4),
-        num(row.substitution_period, 16), sci(row.substitution_error, 2),
+        integer(row.n), num(row.estimate, 16), sci(row.error, 3), "—" if row.rate is None else fixed(row.rate, 4),
+        num(row.substitution_estimate, 16), sci(row.substitution_error, 2),
     ] for row in rows]
     w = doc.catalogue
     doc.figure("p5d_conv", lambda ax: quadrature_convergence(ax, r, labels={
@@ -317,9 +317,9 @@ def problem5(doc: Doc, students: Sequence[int]) -> None:
     last = r.rows[-1]
     conv = r.substitution_converged_n
     doc.set(**{
-        "p5.l": num(r.length, 4), "p5.exact": num(r.exact, 15),
-        "p5.q1": num(r.single, 12), "p5.e1": sci(abs(r.single - r.exact), 3),
-        "p5.s10": num(r.composite10, 12), "p5.e10": sci(abs(r.composite10 - r.exact), 3),
+        "p5.l": num(r.length, 4), "p5.t_hat": num(r.t_hat, 15),
+        "p5.q1": num(r.single, 12), "p5.e1": sci(abs(r.single - r.t_hat), 3),
+        "p5.s10": num(r.composite10, 12), "p5.e10": sci(abs(r.composite10 - r.t_hat), 3),
         "p5.rate": fixed(last.rate, 4) if last.rate is not None else "—",
         "p5.elast": sci(last.error, 3), "p5.nlast": integer(last.n),
         "p5.floor": sci(r.rounding_floor, 1),

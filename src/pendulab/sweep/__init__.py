@@ -170,9 +170,9 @@ def sweep(
         cols["amplitude"].append(alpha[lo:hi])
     columns = {k: np.concatenate(c) for k, c in cols.items()}
     columns["method"] = columns["method"].astype(str)
-    for key in ("exact", "status", "steps", "linear", "cubic", "cubic_error_estimate"):
+    for key in ("period", "status", "steps", "linear", "cubic", "cubic_error_estimate"):
         columns[key] = np.concatenate([p[key] for p in parts])
     columns["status"] = np.asarray(STATUS)[columns["status"]]
-    columns["linear_error"] = columns["linear"] - columns["exact"]
-    columns["cubic_error"] = columns["cubic"] - columns["exact"]
+    columns["linear_error"] = columns["linear"] - columns["period"]
+    columns["cubic_error"] = columns["cubic"] - columns["period"]
     return SweepResult(columns)

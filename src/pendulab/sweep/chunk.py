@@ -43,7 +43,7 @@ def run_chunk(code: int, order: int, alphas: np.ndarray, lengths: np.ndarray, g:
     # Steps taken: j + 2 when found (one past the sign change), else the index reported.
     steps = np.where(found, j + 2, np.where(status == Status.LEFT_OSCILLATION, j + 1, j))
     return {
-        "exact": exact,
+        "period": exact,
         "status": status,
         "steps": steps,
         "linear": linear,

@@ -24,9 +24,9 @@ class SweepResult(Result):
     """One row per (method, step, pendulum): the simulated period and its errors.
 
     Columns (all arrays of the same length): ``method`` (str), ``order``, ``step``,
-    ``length``, ``amplitude`` (rad), ``exact`` (AGM period (8)), ``status`` (one of
+    ``length``, ``amplitude`` (rad), ``period`` (AGM period (8), converged), ``status`` (one of
     :data:`STATUS`), ``steps`` (steps taken), ``linear``, ``cubic`` (period estimates; NaN
-    unless ``status == "found"``), ``linear_error``, ``cubic_error`` (``estimate - exact``),
+    unless ``status == "found"``), ``linear_error``, ``cubic_error`` (``estimate - period``),
     ``cubic_error_estimate`` (the interpolation error estimate of problem 3(d)).
     """
 
@@ -53,7 +53,7 @@ class SweepResult(Result):
         for method, step in keys:
             r = self.select(method, step)
             ok = r["status"] == "found"
-            rel = np.abs(r["cubic_error"][ok] / r["exact"][ok])
+            rel = np.abs(r["cubic_error"][ok] / r["period"][ok])
             out.append(
                 {
                     "method": method,

@@ -55,7 +55,7 @@ class PeriodAnswer(_Model):
     amplitude: float = Field(description="rad")
     amplitude_deg: float
     g: float = Field(description="m/s^2")
-    exact: float = Field(description="the AGM period, equations (7)-(8), s")
+    period: float = Field(description="the AGM period, equations (7)-(8), converged, s")
     small_angle: float = Field(description="2 pi sqrt(l/g), s")
 
 
@@ -75,7 +75,7 @@ class Estimate(_Model):
     cubic: float | None = Field(description="the inverse-cubic estimate of problem 3(d), s")
     cubic_error_estimate: float | None
     errors: EstimateErrors = Field(description="absolute errors against the AGM period, s")
-    exact: float = Field(description="the AGM period, s")
+    period: float = Field(description="the AGM period (converged), s")
 
 
 class PeriodWithEstimate(PeriodAnswer):

@@ -45,7 +45,7 @@ def period_view(length: float, amplitude: float, g: float) -> dict[str, Any]:
         "amplitude": amplitude,
         "amplitude_deg": math.degrees(amplitude),
         "g": g,
-        "exact": float(agm_period(length, amplitude, g)),
+        "period": float(agm_period(length, amplitude, g)),
         "small_angle": float(small_angle_period(length, g)),
     }
 
@@ -80,11 +80,11 @@ def estimate_view(length: float, amplitude: float, step: float, g: float, method
             "cubic": _num(e.cubic),
             "cubic_error_estimate": _num(e.cubic_error_estimate),
             "errors": {
-                "bracket_mid": abs(mid - e.exact),
+                "bracket_mid": abs(mid - e.period),
                 "linear": _num(e.linear_error),
                 "cubic": _num(e.cubic_error),
             },
-            "exact": e.exact,
+            "period": e.period,
         },
         "reason": None,
     }
@@ -230,15 +230,15 @@ def convergence_view(params: Mapping[str, str], stop: threading.Event | None = N
     steps = sorted(set(parameters.step_list(params)), reverse=True)
     exact = period_view(p["length"], p["amplitude"], p["g"])
     largest = parameters.DEFAULT_STEPS[0]
-    if default_t_max(exact["exact"], largest, 0.0) / largest > limits.max_steps(method):
+    if default_t_max(exact["period"], largest, 0.0) / largest > limits.max_steps(method):
         # Even the default list's largest step cannot reach the first return: the period is too long.
         name = parameters.unusual(p["length"], p["g"])
         raise InputError(
             name, inputs.shown(parameters.text(params, name, parameters.DEFAULTS["g"])),
-            f"such that the period search (1.5 T + 4h, T = {exact['exact']:.3g} s) fits in "
+            f"such that the period search (1.5 T + 4h, T = {exact['period']:.3g} s) fits in "
             f"{limits.max_steps(method):.3g} steps of {method.name} of h = {largest:g} s",
         )
-    limits.check_sweep([default_t_max(exact["exact"], h, 0.0) for h in steps], steps, method)
+    limits.check_sweep([default_t_max(exact["period"], h, 0.0) for h in steps], steps, method)
     rows = []
     for h in steps:
         if stop is not None and stop.is_set():

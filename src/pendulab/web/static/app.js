@@ -155,7 +155,7 @@ async function update() {
 
 async function updateConvergence(my) {
   const s = sims.a;
-  const T = s.period.exact;
+  const T = s.period.period;
   // Steps from T/30 down to T/30000, four per decade, plus the step in use.
   const steps = [];
   for (let k = 0; k <= 12; k++) steps.push(T / Math.pow(10, 1.5 + k / 4));
@@ -232,7 +232,7 @@ function tableFor(s, suffix) {
       const err = k === "bracket" ? e.errors.bracket_mid : e.errors[k];
       cells[0] = k === "bracket" ? `[${short(e.bracket[0])}, ${short(e.bracket[1])}]` : fix(e[k]);
       cells[1] = sci(err);
-      cells[2] = err === null ? "–" : sci(err / p.exact);
+      cells[2] = err === null ? "–" : sci(err / p.period);
     }
     tr.innerHTML = `<td>${name}</td>`;
     ["est", "err", "rel"].forEach((pre, i) => {
@@ -255,7 +255,7 @@ function tableFor(s, suffix) {
 
 function renderPeriods() {
   const p = sims.a.period;
-  $("period-exact").textContent = fix(p.exact);
+  $("period-exact").textContent = fix(p.period);
   $("period-small").textContent = fix(p.small_angle);
   const box = $("tables");
   box.textContent = "";
@@ -313,7 +313,7 @@ function twoMethods(traces) {
 
 function renderTheta() {
   const s = sims.a;
-  const T = s.period.exact;
+  const T = s.period.period;
   const shapes = [cursorShape(anim.t)];
   const annotations = [];
   const marks = Math.floor(s.input.t_max / T);
@@ -390,7 +390,7 @@ function renderEnergy() {
 function renderEstimates() {
   const p = sims.a.period;
   const e = p.estimate;
-  const T = p.exact;
+  const T = p.period;
   if (!e) {
     plot("plot-estimates", [], layout("Period estimates − exact T", "", "estimate − T (s)", {
       annotations: [{ text: "no period from this simulation", showarrow: false, xref: "paper", yref: "paper", x: 0.5, y: 0.5 }],
