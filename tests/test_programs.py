@@ -225,3 +225,64 @@ def test_problem5_is_the_engines_to_rounding():
         assert (rate is None) == (row.rate is None)
         if rate is not None:
             assert rate == pytest.approx(row.rate, abs=1e-6)
+
+
+# ----------------------------------------------------------------------------- Portuguese
+def _code_only(text: str) -> str:
+    """The program's AST without docstrings, and its lines without comments."""
+    import io
+    import tokenize
+
+    tree = ast.parse(text)
+    for node in ast.walk(tree):
+        body = getattr(node, "body", None)
+        if isinstance(body, list) and body and isinstance(body[0], ast.Expr) and isinstance(
+                getattr(body[0], "value", None), ast.Constant) and isinstance(body[0].value.value, str):
+            body[0].value.value = ""
+    tokens = [t.string for t in tokenize.generate_tokens(io.StringIO(text).readline)
+              if t.type not in (tokenize.COMMENT, tokenize.STRING, tokenize.NL, tokenize.NEWLINE)]
+    return ast.dump(tree) + "\n".join(tokens)
+
+
+def test_portuguese_programs_differ_in_comments_only(tmp_path):
+    import json
+    from importlib import resources
+
+    assert main(["programs", "--output", str(tmp_path), "--lang", "pt"]) == 0
+    table = json.loads(resources.files("pendulab").joinpath("programs/pt.json").read_text(encoding="utf-8"))
+    english = {line for name in coursework.PROGRAMS for line in coursework.source(name).splitlines()}
+    assert set(table) <= english  # no translation of a line that is gone
+    for name in coursework.PROGRAMS:
+        en, pt = coursework.source(name), (tmp_path / name).read_text(encoding="utf-8")
+        assert _code_only(en) == _code_only(pt), name
+        assert max(len(line) for line in pt.splitlines()) <= 88, name
+        # Every docstring and comment line with words in it is translated.
+        for line_en, line_pt in zip(en.splitlines(), pt.splitlines()):
+            if line_en in table:
+                assert line_pt == table[line_en] != line_en
+    assert "Problema 3(b)-(d)" in (tmp_path / "problem3.py").read_text(encoding="utf-8")
+
+
+def test_every_comment_has_a_translation():
+    """Each English comment or docstring line with prose is in pt.json (formulas aside)."""
+    import io
+    import json
+    import re
+    import tokenize
+    from importlib import resources
+
+    table = json.loads(resources.files("pendulab").joinpath("programs/pt.json").read_text(encoding="utf-8"))
+    prose = re.compile(r"\b(the|of|and|with|from|for|is|by|to|at)\b")
+    for name in coursework.PROGRAMS:
+        text = coursework.source(name)
+        lines = text.splitlines()
+        spans = set()
+        for node in ast.walk(ast.parse(text)):
+            if isinstance(node, (ast.Module, ast.FunctionDef)) and ast.get_docstring(node):
+                spans.update(range(node.body[0].lineno - 1, node.body[0].end_lineno))
+        for tok in tokenize.generate_tokens(io.StringIO(text).readline):
+            if tok.type == tokenize.COMMENT:
+                spans.add(tok.start[0] - 1)
+        for i in sorted(spans):
+            if prose.search(lines[i].split("#", 1)[-1]):
+                assert lines[i] in table, (name, lines[i])
