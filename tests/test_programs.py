@@ -220,7 +220,7 @@ def test_problem5_is_the_engines_to_rounding():
     r = problems.problem5(substitution=False)
     assert [row[0] for row in rows] == [row.n for row in r.rows]
     for (n, period, error, rate), row in zip(rows, r.rows):
-        assert period == pytest.approx(row.period, rel=1e-11), n
+        assert period == pytest.approx(row.estimate, rel=1e-11), n
         assert error == pytest.approx(row.error, rel=1e-8), n
         assert (rate is None) == (row.rate is None)
         if rate is not None:
