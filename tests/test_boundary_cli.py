@@ -74,12 +74,13 @@ def sandbox(tmp_path_factory):
 
     import pendulab.key
     import pendulab.report
+    import pendulab.report.key
 
     (folder / "groups.txt").write_text("262 407 634\n", encoding="utf-8")
     with pytest.MonkeyPatch.context() as mp, contextlib.chdir(folder):
         mp.setattr(pendulab.report, "build_report", lambda *a, **k: None)
         mp.setattr(pendulab.key, "answer_key", lambda *a, **k: None)
-        mp.setattr(pendulab.key, "write_key", lambda *a, **k: None)
+        mp.setattr(pendulab.report.key, "write_key", lambda *a, **k: None)
         mp.setattr(uvicorn, "run", lambda *a, **k: None)
         mp.setattr(socket, "getaddrinfo", numeric_only)
         for command in COMMANDS:  # imports and compiled kernels loaded before anything is timed

@@ -6,7 +6,7 @@ import mpmath
 import pytest
 
 from pendulab.errors import InputError
-from pendulab.exact import parse_angle, parse_number
+from pendulab.inputs import parse_angle, parse_number
 
 
 @pytest.mark.parametrize(

@@ -185,7 +185,7 @@ def test_missing_groups_file(tmp_path, capsys):
 
 
 def test_failed_run_keeps_the_older_file(groups_file, tmp_path, monkeypatch):
-    from pendulab import key as key_module
+    from pendulab.report import key as key_module
 
     out = tmp_path / "key.json"
     out.write_text("older")

@@ -161,16 +161,16 @@ def test_appendix_lists_the_code_that_ran(built):
 
 
 def test_appendix_index_lists_the_jacobi_agm(built):
-    """``motion._jacobi_agm`` computes the exact motion of 4(d)(ii) (``jacobi`` only wraps it):
+    """``motion.jacobi_agm`` computes the exact motion of 4(d)(ii) (``jacobi`` only wraps it):
     it is in the index with its file and line, like every other program that ran."""
     import inspect
 
     from pendulab import motion
 
-    line = inspect.getsourcelines(motion._jacobi_agm)[1]
+    line = inspect.getsourcelines(motion.jacobi_agm)[1]
     for lang in ("en", "pt"):
         text = pdf_text(built[lang])
-        assert re.search(rf"motion\._jacobi_agm\s+motion\.py:{line}\b", text), lang
+        assert re.search(rf"motion\.jacobi_agm\s+motion\.py:{line}\b", text), lang
 
 
 def test_short_pendulum_says_the_simulation_leaves_the_oscillation(built):

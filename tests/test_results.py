@@ -111,7 +111,10 @@ def test_html_shows_every_field_and_floats_in_full():
         assert f"<th style='text-align:left'>{f.name}</th>" in page
     assert f"<code>{p2.alpha!r}</code>" in page  # the shortest repr: every digit of the double
     # The result carries the decision; its words come from the catalogues (pendulab.words).
-    assert "curvature_positive" in page and html.escape(p2.justification) not in page
+    from pendulab.words import sentence
+
+    words = sentence("p2.justification." + ("positive" if p2.curvature_positive else "negative"))
+    assert "curvature_positive" in page and html.escape(words) not in page
     assert "<details><summary>NewtonResult</summary>" in page
 
 

@@ -10,12 +10,11 @@ import tempfile
 from collections.abc import Iterator
 from pathlib import Path
 
-from .errors import InputError
+from .errors import InputError, shown
 
 
 def check_writable(name: str, path: str | os.PathLike) -> Path:
     """Fail early, before any work, when ``path``'s folder does not exist or is not writable."""
-    from .inputs import shown  # as typed; quoted where unprintable (no terminal escapes echoed)
 
     p = Path(path)
     folder = p.parent if str(p.parent) else Path(".")

@@ -60,6 +60,24 @@ def amplitude(name: str, value: Any) -> float:
     return x
 
 
+
+def amplitudes(name: str, value: Any) -> Any:
+    """:func:`amplitude` for a scalar, or a float array whose every element is in ``[0, pi)``
+    (the first bad element is the one named)."""
+    import numbers
+
+    if isinstance(value, numbers.Real):
+        return amplitude(name, value)
+    import numpy as np
+
+    if np.ndim(value) == 0:
+        return amplitude(name, value)
+    alpha = np.asarray(value, dtype=float)
+    ok = np.isfinite(alpha) & (alpha >= 0) & (alpha < np.pi)
+    if not np.all(ok):
+        amplitude(name, alpha[~ok][0])
+    return alpha
+
 def integer(name: str, value: Any, low: int, high: int | None = None) -> int:
     """An integer in ``[low, high]`` (``high=None``: no upper bound)."""
     ok = isinstance(value, int) and not isinstance(value, bool)

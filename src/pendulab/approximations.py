@@ -35,7 +35,7 @@ import numpy as np
 from . import _validate as v
 from .cases import G
 from .errors import InputError
-from .period import _check_amplitudes, agm_mean
+from .period import agm_mean
 from .results import Result
 
 _GANLEY_F = math.sqrt(3) / 2
@@ -113,7 +113,7 @@ def approximate_period(name: str, length: Any, amplitude: Any, g: Any = G) -> An
     """The period by the formula ``name`` (a key of :data:`FORMULAS` or ``agmN``)."""
     formula = _formula(name)
     t0 = 2 * math.pi * math.sqrt(v.positive("length", length) / v.positive("g", g))
-    alpha = np.asarray(_check_amplitudes(amplitude), dtype=float)
+    alpha = np.asarray(v.amplitudes("amplitude", amplitude), dtype=float)
     r = t0 * formula.ratio(alpha)
     return float(r) if np.ndim(r) == 0 else r
 
@@ -172,7 +172,7 @@ def approximation_errors(amplitudes: Any = None, names: Any = None) -> Approxima
     """
     if amplitudes is None:
         amplitudes = np.radians(np.linspace(0.1, 179.9, 1000))
-    alpha = np.atleast_1d(np.asarray(_check_amplitudes(amplitudes), dtype=float))
+    alpha = np.atleast_1d(np.asarray(v.amplitudes("amplitude", amplitudes), dtype=float))
     formulas = tuple(_formula(n) for n in (names if names is not None else FORMULAS))
     m = agm_mean(np.cos(alpha / 2))
     errors = {f.name: f.ratio(alpha) * m - 1 for f in formulas}

@@ -45,15 +45,27 @@ class InputError(PendulabError, ValueError):
         self.allowed = allowed
         self.mentions = mentions
         self.alternative = alternative
-        super().__init__(f"{name} = {_shown(value)} is not allowed: must be {allowed}")
+        super().__init__(f"{name} = {shown_value(value)} is not allowed: must be {allowed}")
 
 
-def _shown(value: object) -> str:
-    """A float as its shortest repr without a trailing ``.0`` (``1`` typed shows as ``1``)."""
+def shown_value(value: object) -> str:
+    """A value as a message shows it: a float as its shortest repr without a trailing ``.0``
+    (``1`` typed shows as ``1``), anything else as ``str``."""
     if isinstance(value, float):  # numpy's float64 too, whose repr names its type
         text = repr(float(value))
         return text[:-2] if text.endswith(".0") else text
     return str(value)
+
+
+def shown(text: object) -> str:
+    """``text`` as an error message shows it: as typed when short and printable, else quoted
+    (no terminal escapes echoed)."""
+    s = str(text)
+    if not s:
+        return "(empty)"
+    if len(s) > 40:
+        return repr(s[:37] + "...")
+    return s if s and s.isprintable() and s == s.strip() else repr(s)
 
 
 class NumericalError(PendulabError):

@@ -8,8 +8,12 @@ to it (correctly rounded) for the float path.
 from __future__ import annotations
 
 import math
+import threading
+from collections.abc import Iterator
+from contextlib import contextmanager
 from dataclasses import dataclass
 from fractions import Fraction
+from typing import Any
 
 
 @dataclass(frozen=True)
@@ -64,12 +68,11 @@ class Exact:
         return self.text or str(float(self))
 
     @classmethod
-    def of(cls, value: Exact | float | int | str) -> Exact:
-        """Coerce a float (its exact binary value), an int or a string (:func:`parse_number`)."""
+    def of(cls, value: Exact | float | int) -> Exact:
+        """Coerce a float (its exact binary value) or an int; text is parsed by
+        :func:`pendulab.inputs.parse_number`."""
         if isinstance(value, Exact):
             return value
-        if isinstance(value, str):
-            return parse_number("value", value)
         return cls(Fraction(value), 0, repr(value))
 
 
@@ -97,24 +100,37 @@ def _pi_bounds(bits: int) -> tuple[int, int]:
     return (v - err) >> 20, ((v + err) >> 20) + 1
 
 
-def parse_number(name: str, text: str) -> Exact:
-    """Parse a plain real number or ratio, ``2.0800838231`` or ``1/3``, exactly.
+def below_pi(x: Exact) -> bool:
+    """``x < pi`` decided exactly: on the coefficient for a multiple of pi, else by Arb
+    balls of growing precision (pi is irrational, so the comparison always resolves)."""
+    if x.pi_power == 1:
+        return x.coef < 1
+    if x.coef <= 3 or x.coef >= 4:
+        return x.coef <= 3
+    from flint import arb, fmpq
 
-    The grammar and its limits are :func:`pendulab.inputs.real`'s.
-    """
-    from .inputs import real
+    prec = 64
+    with arb_precision(prec) as ctx:
+        while True:
+            ctx.prec = prec
+            d = arb.pi() - arb(fmpq(x.coef.numerator, x.coef.denominator))
+            if d > 0 or d < 0:
+                return bool(d > 0)
+            prec *= 2
 
-    return real(name, text)
+
+_ARB_LOCK = threading.RLock()
 
 
-def parse_angle(name: str, text: str | float) -> Exact:
-    """Parse an angle: ``0.785``, ``pi/4``, ``4pi/5``, ``4*pi/5``, ``45deg``, ``45°``.
+@contextmanager
+def arb_precision(prec: int) -> Iterator[Any]:
+    """Arb's working precision (bits) is one global setting: set it under a lock, restore it."""
+    from flint import ctx
 
-    Returns the exact angle in radians; the range is not checked here (see
-    :func:`pendulab.inputs.angle`, which does).
-    """
-    if isinstance(text, (int, float)) and not isinstance(text, bool):
-        return Exact.of(text)
-    from .inputs import angle_value
-
-    return angle_value(name, text)
+    with _ARB_LOCK:
+        old = ctx.prec
+        ctx.prec = prec
+        try:
+            yield ctx
+        finally:
+            ctx.prec = old

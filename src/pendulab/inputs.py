@@ -42,8 +42,8 @@ from pathlib import Path
 from typing import TypeVar, cast
 
 from .cases import EXAMPLE_GROUP
-from .errors import InputError
-from .exact import Exact
+from .errors import InputError, shown
+from .exact import Exact, below_pi
 
 T = TypeVar("T")
 
@@ -71,7 +71,8 @@ _PI_FORM = re.compile(
 _DEG_FORM = re.compile(rf"(?P<num>{_NUM}(?:\s*/\s*{_NUM})?)\s*(?:deg|degrees?|°)", _FLAGS)
 _RAD_FORM = re.compile(rf"(?P<num>{_NUM}(?:\s*/\s*{_NUM})?)\s*(?:rad|radians?)", _FLAGS)
 _QUANTITY = re.compile(rf"(?P<num>{_NUM})\s*(?P<unit>[a-z]*)", _FLAGS)
-_SEPARATOR = re.compile(r"\s*,\s*|\s+")
+#: What separates the items of a list: commas, spaces, or both.
+SEPARATOR = re.compile(r"\s*,\s*|\s+")
 _ANY_EXPONENT = re.compile(r"(?<=[0-9.])[eE]([+-]?[0-9]+)", re.ASCII)
 
 NUMBER_WORDS = "a number such as 3.5, 2e-3 or 1/3"
@@ -84,16 +85,6 @@ ANGLE_WORDS = "an angle such as 0.785, pi/4, 4pi/5, 45deg or 45°"
 
 
 # --------------------------------------------------------------------------- text
-def shown(text: object) -> str:
-    """``text`` as an error message shows it: as typed when short and printable, else quoted."""
-    s = str(text)
-    if not s:
-        return "(empty)"
-    if len(s) > 40:
-        return repr(s[:37] + "...")
-    return s if s and s.isprintable() and s == s.strip() else repr(s)
-
-
 def clean(name: str, text: object, allowed: str, max_len: int = MAX_TEXT) -> str:
     """The stripped text, or an error: missing, empty, too long, or with non-ASCII digits."""
     if text is None:
@@ -278,23 +269,38 @@ def exact_angle(name: str, text: object) -> Exact:
     pi is judged by its rational coefficient, radians by a certified comparison with pi
     (Arb balls).
     """
-    from .period import _below_pi
-
     allowed = "an angle in [0, pi) rad such as 0.785, pi/4, 4pi/5, 45deg or 45°"
     try:
         x = angle_value(name, text)
     except InputError as exc:
         raise InputError(name, exc.value, allowed + exc.allowed[len(ANGLE_WORDS):]) from None
-    if x.coef < 0 or not _below_pi(x):
+    if x.coef < 0 or not below_pi(x):
         raise InputError(name, shown(x.text), allowed)
     return x
+
+
+def parse_number(name: str, text: str) -> Exact:
+    """A plain real number or ratio, ``2.0800838231`` or ``1/3``, exactly (:func:`real`)."""
+    return real(name, text)
+
+
+def parse_angle(name: str, text: str | float) -> Exact:
+    """An angle: ``0.785``, ``pi/4``, ``4pi/5``, ``4*pi/5``, ``45deg``, ``45°``; a float is
+    taken exactly (its binary value).
+
+    Returns the exact angle in radians; the range is not checked here (:func:`angle`
+    checks it).
+    """
+    if isinstance(text, (int, float)) and not isinstance(text, bool):
+        return Exact.of(text)
+    return angle_value(name, text)
 
 
 # --------------------------------------------------------------------------- lists
 def items(name: str, text: object, allowed: str, max_items: int = MAX_ITEMS) -> list[str]:
     """The items of a list separated by commas, spaces or both; no empty item."""
     s = clean(name, text, allowed, MAX_LIST_TEXT)
-    parts = _SEPARATOR.split(s)
+    parts = SEPARATOR.split(s)
     if any(not p for p in parts):
         raise InputError(name, shown(s), f"{allowed}, with no empty item (doubled or trailing comma)")
     if len(parts) > max_items:

@@ -14,7 +14,7 @@ from __future__ import annotations
 from dataclasses import dataclass
 from enum import IntEnum
 
-from .errors import InputError
+from .errors import InputError, shown
 
 #: The largest order of the Taylor method of any order (size of its scratch arrays).
 MAX_TAYLOR_ORDER = 30
@@ -81,7 +81,6 @@ def resolve(name: object, argument: str = "method") -> Method:
             p = name[len(_FAMILY):]
             if p.isascii() and p.isdigit() and len(p) <= 3 and 1 <= int(p) <= MAX_TAYLOR_ORDER:
                 return Method(name, Kernel.TAYLOR, int(p), f"Taylor method of order {int(p)}")
-    from .inputs import shown  # as typed, like every other value (a repr only where unprintable)
 
     raise InputError(argument, shown(name) if isinstance(name, str) else repr(name), allowed())
 

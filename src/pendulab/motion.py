@@ -47,7 +47,7 @@ from .results import Result
 _EPS = np.finfo(float).eps
 
 
-def _jacobi_agm(u: np.ndarray, k: float, kp: float) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+def jacobi_agm(u: np.ndarray, k: float, kp: float) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     """``sn, cn, dn`` of ``u`` for modulus ``k``, complementary modulus ``kp`` given exactly.
 
     The AGM method (DLMF 22.20(ii); A&S 16.4): ``a0 = 1, b0 = k', c0 = k``,
@@ -78,12 +78,12 @@ def _jacobi_agm(u: np.ndarray, k: float, kp: float) -> tuple[np.ndarray, np.ndar
 def jacobi(u: Any, amplitude: float) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     """``sn(u|m), cn(u|m), dn(u|m)`` for ``m = sin^2(alpha/2)``, accurate up to ``alpha -> pi``.
 
-    :func:`_jacobi_agm` from ``k = sin(alpha/2)`` and ``k' = cos(alpha/2)`` (module docstring).
+    :func:`jacobi_agm` from ``k = sin(alpha/2)`` and ``k' = cos(alpha/2)`` (module docstring).
     """
     alpha = v.amplitude("amplitude", amplitude)
     k, kp = math.sin(0.5 * alpha), math.cos(0.5 * alpha)
     u = np.asarray(u, dtype=float)
-    return _jacobi_agm(u, k, kp)
+    return jacobi_agm(u, k, kp)
 
 
 def quarter_period(amplitude: float) -> float:

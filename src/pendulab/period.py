@@ -15,14 +15,12 @@ from __future__ import annotations
 import math
 import numbers
 import sys
-import threading
-from contextlib import contextmanager
 from fractions import Fraction
 from typing import Any
 
 from . import _validate as v
 from .cases import G_EXACT, G
-from .exact import Exact
+from .exact import Exact, arb_precision, below_pi
 
 # numpy and numba are imported only where arrays are handled: a scalar period (and
 # ``pendulab period``) needs neither.
@@ -110,18 +108,6 @@ def agm_mean(b0: Any, iterations: int | None = None) -> Any:
     return 0.5 * (av + bv)
 
 
-def _check_amplitudes(amplitude: Any) -> Any:
-    if _is_scalar(amplitude):
-        return v.amplitude("amplitude", amplitude)
-    import numpy as np
-
-    alpha = np.asarray(amplitude, dtype=float)
-    ok = np.isfinite(alpha) & (alpha >= 0) & (alpha < np.pi)
-    if not np.all(ok):
-        v.amplitude("amplitude", alpha[~ok][0])
-    return alpha
-
-
 def nearest_period(length: float, amplitude: float, g: float) -> float:
     """The double nearest to the true period (8) of the doubles ``length, amplitude, g``.
 
@@ -184,7 +170,7 @@ def agm_period(length: Any, amplitude: Any, g: Any = G, iterations: int | None =
         iterations = v.integer("iterations", iterations, 0, 1000)
     exact_array = iterations is None and not (_is_scalar(amplitude) and _is_scalar(length))
     # The compiled kernel checks an array of amplitudes itself (in the same pass).
-    alpha = amplitude if exact_array else _check_amplitudes(amplitude)
+    alpha = amplitude if exact_array else v.amplitudes("amplitude", amplitude)
     scalar = not exact_array and _is_scalar(alpha) and _is_scalar(length)
     if scalar and iterations is not None:
         return small_angle_period(length, g) / agm_mean(math.cos(0.5 * alpha), iterations)
@@ -238,7 +224,7 @@ def _exact_inputs(length: Any, amplitude: Any, g: Any) -> tuple[Exact, Exact, Ex
     value, so ``"0.9999999999999999999999999pi"`` is accepted at any precision.
     """
     from .errors import InputError
-    from .exact import parse_angle, parse_number
+    from .inputs import parse_angle, parse_number
 
     def exact(name, x, parser):
         if isinstance(x, Exact):
@@ -253,45 +239,9 @@ def _exact_inputs(length: Any, amplitude: Any, g: Any) -> tuple[Exact, Exact, Ex
     for name, x in (("length", l_), ("g", g_)):
         if not x.coef > 0:
             raise InputError(name, x.text or float(x), "a finite number > 0")
-    if not (a_.coef >= 0 and _below_pi(a_)):
+    if not (a_.coef >= 0 and below_pi(a_)):
         raise InputError("amplitude", a_.text or repr(float(a_)), "an angle in [0, pi) rad")
     return l_, a_, g_
-
-
-def _below_pi(x: Exact) -> bool:
-    """``x < pi`` decided exactly: on the coefficient for a multiple of pi, else by Arb
-    balls of growing precision (pi is irrational, so the comparison always resolves)."""
-    if x.pi_power == 1:
-        return x.coef < 1
-    if x.coef <= 3 or x.coef >= 4:
-        return x.coef <= 3
-    from flint import arb, fmpq
-
-    prec = 64
-    with _arb_precision(prec) as ctx:
-        while True:
-            ctx.prec = prec
-            d = arb.pi() - arb(fmpq(x.coef.numerator, x.coef.denominator))
-            if d > 0 or d < 0:
-                return bool(d > 0)
-            prec *= 2
-
-
-_ARB_LOCK = threading.RLock()
-
-
-@contextmanager
-def _arb_precision(prec: int):
-    """Arb's working precision (bits) is one global setting: set it under a lock, restore it."""
-    from flint import ctx
-
-    with _ARB_LOCK:
-        old = ctx.prec
-        ctx.prec = prec
-        try:
-            yield ctx
-        finally:
-            ctx.prec = old
 
 
 def _arb_of(x: Exact):
@@ -326,7 +276,7 @@ def period_ball(length: Any, amplitude: Any, g: Any = G_EXACT, prec: int = 128):
 
     l_, a_, g_ = _exact_inputs(length, amplitude, g)
     prec = v.integer("prec", prec, 16, 1 << 26)
-    with _arb_precision(prec):
+    with arb_precision(prec):
         if a_.pi_power == 1:
             c = (1 - a_.coef) / 2
             b0 = arb.sin_pi_fmpq(fmpq(c.numerator, c.denominator))
@@ -480,7 +430,7 @@ def fixed_iterations_error(amplitude: Any, iterations: int = 7, guard: int = 30)
         if isinstance(amplitude, mpmath.mpf):
             return amplitude
         if isinstance(amplitude, str):
-            from .exact import parse_angle
+            from .inputs import parse_angle
 
             return parse_angle("amplitude", amplitude).mpf(dps)
         return Exact.of(amplitude).mpf(dps)

@@ -235,8 +235,7 @@ class Problem2(Result):
     x0 : float
         The starting value (rad).
     x0_from_fourier : bool
-        ``x0`` was chosen by Fourier's condition (not given by the caller); ``x0_rule``
-        says so in words.
+        ``x0`` was chosen by Fourier's condition (not given by the caller).
     x0_in_interval : bool
     run : NewtonResult
         Iterates, corrections, ``q_k``, ``k_max``, asymptotic constant, error estimate.
@@ -252,8 +251,8 @@ class Problem2(Result):
         ``|x[k+2]-x[k+1]| / |x[k+1]-x[k]|`` -> 0: convergence is superlinear (2(b)).
     curvature_positive : bool
         ``f'' >= 0`` on ``[a, b]`` (the interval lies below ``pi/2``; else above it, as the
-        conditions of 2(a) require a constant sign); ``justification`` says
-        in words why the grid check of the conditions is then a proof for this ``f``.
+        conditions of 2(a) require a constant sign): the decision behind the words
+        (``p2.justification.*`` of the catalogues) on why the grid check is a proof for this ``f``.
     """
 
     equation: PeriodEquation
@@ -269,20 +268,6 @@ class Problem2(Result):
     condition_values: dict[str, dict[str, float]]
     ratios: tuple[float | None, ...]
     curvature_positive: bool
-
-    @property
-    def x0_rule(self) -> str:
-        """Why this ``x0``, in words (``"given"`` when the caller chose it)."""
-        from .words import sentence
-
-        return sentence("p2.x0_rule") if self.x0_from_fourier else "given"
-
-    @property
-    def justification(self) -> str:
-        """Why the grid check of the conditions of 2(a) is a proof for this ``f``, in words."""
-        from .words import sentence
-
-        return sentence("p2.justification." + ("positive" if self.curvature_positive else "negative"))
 
     @property
     def asymptotic_constant(self) -> float | None:
@@ -401,14 +386,6 @@ class Problem4(Result):
     curve_t: np.ndarray
     curve_phi: np.ndarray
     curve_exact: np.ndarray
-
-    @property
-    def answer(self) -> str:
-        """4(d)(ii) in words."""
-        from .words import sentence
-
-        return sentence("p4.answer." + ("yes" if self.below_tolerance else "no"), deviation=self.fit.max_deviation,
-                        at=self.fit.argmax_deviation, tolerance=self.tolerance, exact=self.exact_deviation)
 
     @property
     def points(self) -> int:
@@ -559,21 +536,6 @@ class Problem5(Result):
                 f"{self.t_hat - self.period:+.3e} s ({self.t_hat_ulps:+d} ulp, more than the "
                 f"{FIXED_ITERATIONS_ULPS} ulp of rounding): 7 iterations of (7) have not converged this close to pi, "
                 "so errors against T^ include T^'s own")
-
-    @property
-    def answer_5a(self) -> str:
-        """5(a) in words: why the trapezoidal and Simpson rules cannot be applied to (1)."""
-        from .words import sentence
-
-        return sentence("p5.answer_5a")
-
-    @property
-    def rate_explanation(self) -> str:
-        """5(d) in words: why the error of (11) on (1) falls like ``n^(-1/2)``."""
-        from .words import sentence
-
-        last = self.rows[-1].rate if self.rows else None
-        return sentence("p5.rate", observed="none (fewer than two n, or an error at rounding level)" if last is None else f"{last:.3f}")
 
 
 def _ulps_from(t_hat: float, rounded: float) -> int:

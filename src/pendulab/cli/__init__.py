@@ -165,13 +165,13 @@ def _as_typed(param: click.Parameter | None, value: object, typed: dict[str, tup
     """``value`` as the person typed it: the parameter's text, or the item of its list
     whose value it is; the library's rendering where neither is found."""
     from .. import inputs
-    from ..errors import _shown
+    from ..errors import shown_value
 
     if isinstance(value, str) or param is None or param.name not in typed:
-        return _shown(value)
+        return shown_value(value)
     text = typed[param.name][0]
     parse = getattr(param.type, "parse", None)
-    for candidate in (text, *inputs._SEPARATOR.split(text.strip())):
+    for candidate in (text, *inputs.SEPARATOR.split(text.strip())):
         try:
             parsed = parse(candidate) if parse is not None else candidate
             if hasattr(parsed, "__len__") and not isinstance(parsed, str) and len(parsed) == 1:
@@ -180,7 +180,7 @@ def _as_typed(param: click.Parameter | None, value: object, typed: dict[str, tup
                 return inputs.shown(candidate.strip())
         except (PendulabError, TypeError, ValueError, OverflowError):
             continue
-    return _shown(value)
+    return shown_value(value)
 
 
 if __name__ == "__main__":  # pragma: no cover

@@ -31,7 +31,9 @@ def key(groups_file: str, output: str | None, as_json: bool) -> None:
             require("typst", "pendulab key --output FILE.pdf")
     k = answer.answer_key(groups)
     if output is not None:
-        answer.write_key(k, output)
+        from ..report.key import write_key
+
+        write_key(k, output)
         click.echo(f"pendulab: wrote {output} ({len(groups)} groups)", err=True)
     if as_json:
         emit_json(k.to_dict())

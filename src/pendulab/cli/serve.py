@@ -7,7 +7,7 @@ import socket
 
 import click
 
-from ..inputs import shown
+from ..errors import shown
 from ._common import integer
 
 #: Ports tried after a busy one, to suggest a free one.

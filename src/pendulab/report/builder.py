@@ -17,7 +17,7 @@ from pathlib import Path
 from typing import Any
 
 from . import sections
-from .document import LANGUAGES, Doc, _check_lang, load_catalogue
+from .document import LANGUAGES, Doc, check_lang, load_catalogue
 from .typeset import typeset
 
 __all__ = ["LANGUAGES", "build_report", "compile_pdf", "load_catalogue", "section_data"]
@@ -86,7 +86,7 @@ def new_doc(students: Sequence[int], lang: str, folder: Path) -> Doc:
 
 def section_data(students: Sequence[int], lang: str, folder: Path, only: Sequence[str] | None = None) -> Doc:
     """Run the sections (those labelled in ``only``, default all) for ``students``: the Doc, not typeset."""
-    doc = new_doc(tuple(students), _check_lang(lang), Path(folder))
+    doc = new_doc(tuple(students), check_lang(lang), Path(folder))
     for label, section in sections.SECTIONS:
         if only is None or label in only:
             section(doc, tuple(students))
@@ -127,7 +127,7 @@ def build_report(
     from .._atomic import check_writable, write_bytes
     from ..group import group_length
 
-    _check_lang(lang)
+    check_lang(lang)
     out = check_writable("output", output)
     students = tuple(students)
     group_length(students)  # bad student numbers fail before the work

@@ -24,7 +24,7 @@ LANGUAGES = ("en", "pt")
 STRICT = True
 
 
-def _check_lang(lang: str) -> str:
+def check_lang(lang: str) -> str:
     if lang not in LANGUAGES:
         raise InputError("lang", lang, "one of " + ", ".join(LANGUAGES))
     return lang
@@ -32,7 +32,7 @@ def _check_lang(lang: str) -> str:
 
 def load_catalogue(lang: str) -> dict[str, Any]:
     """The prose of the report in ``lang``."""
-    text = resources.files(__package__).joinpath(f"{_check_lang(lang)}.json").read_text(encoding="utf-8")
+    text = resources.files(__package__).joinpath(f"{check_lang(lang)}.json").read_text(encoding="utf-8")
     return json.loads(text)
 
 

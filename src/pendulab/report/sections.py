@@ -38,8 +38,8 @@ def _below_pi(gap: float):
 def agm(doc: Doc, students: Sequence[int]) -> None:
     from .. import period
     from ..cases import G_EXACT, PROBLEM3_AMPLITUDE
-    from ..exact import parse_angle, parse_number
     from ..group import group_length
+    from ..inputs import parse_angle, parse_number
 
     doc.listing(period.agm_mean, period.agm_period, period.agm_iterations, period.fixed_iterations_error,
                 period.fixed_iterations_limit, period.period_mp, period.period_digits, period.period_ball,
@@ -261,7 +261,7 @@ def problem4(doc: Doc, students: Sequence[int]) -> None:
     alt = problems.problem4(t_max=P4_ALT_T_MAX)
     f = r.fit
     doc.listing(problems.problem4, lsq.design_matrix, lsq.normal_equations, lsq.round_half_up, lsq.definiteness,
-                lsq.least_squares, motion.exact_motion, motion.quarter_period, motion.jacobi, motion._jacobi_agm,
+                lsq.least_squares, motion.exact_motion, motion.quarter_period, motion.jacobi, motion.jacobi_agm,
                 *_c("lsq", "TRIG_BASIS"), *_c("problems", "PROBLEM4_TOLERANCE", "PROBLEM4_FINE"),
                 *_c("cases", "PROBLEM4", "PROBLEM4_STEP", "PROBLEM4_ROUND"))
     n = r.points - 1
@@ -337,7 +337,7 @@ def problem5(doc: Doc, students: Sequence[int]) -> None:
 INDEX_ONLY = frozenset({
     "uncertainty.gravity_estimate", "lsq.least_squares", "newton.check_interval", "problems.problem2",
     "problems.problem4", "problems.problem5", "quadrature.Rule", "quadrature.convergence_table",
-    "motion.jacobi", "motion._jacobi_agm", "motion.quarter_period", "problems.problem1", "uncertainty.round_significant",
+    "motion.jacobi", "motion.jacobi_agm", "motion.quarter_period", "problems.problem1", "uncertainty.round_significant",
     "lsq.definiteness", "lsq.round_half_up", "period.period_mp", "period.period_ball", "quadrature.quadrature_period",
 })
 

@@ -24,7 +24,7 @@ from .. import _validate as v
 from ..cases import G
 from ..errors import InputError
 from ..methods import resolve
-from ..period import _check_amplitudes, agm_period
+from ..period import agm_period
 from .chunk import run_chunk
 from .kernel import BLOCK, LANES, first_returns, first_returns_lanes, first_returns_serial
 from .result import STATUS, SweepResult
@@ -129,7 +129,7 @@ def sweep(
     (:func:`pendulab.crossing.default_t_max`); a pendulum that leaves the oscillation or
     does not return gets a status other than ``"found"`` and NaN estimates.
     """
-    alpha = np.atleast_1d(np.asarray(_check_amplitudes(amplitudes), dtype=float)).ravel()
+    alpha = np.atleast_1d(np.asarray(v.amplitudes("amplitude", amplitudes), dtype=float)).ravel()
     if len(alpha) == 0:
         raise InputError("amplitude", "[]", "at least one amplitude in (0, pi)")
     if np.any(alpha == 0):

@@ -10,8 +10,7 @@ from typing import Any
 import numpy as np
 
 from .._atomic import atomic_path, check_writable
-from ..errors import InputError
-from ..inputs import shown
+from ..errors import InputError, shown
 from ..methods import Status
 from ..results import Result
 

@@ -1,0 +1,190 @@
+"""The layers of the package: every import runs downward, no import circle, no private
+name taken from another module.
+
+Each module's imports are read with ``ast`` (module-level and inside functions alike),
+so an import hidden in a function to dodge a circle at import time still counts.
+:data:`LAYERS` is the table of the design page (``docs/design.md``, checked below).
+"""
+from __future__ import annotations
+
+import ast
+import re
+import sys
+from functools import cache
+from pathlib import Path
+
+import pytest
+
+ROOT = Path(__file__).resolve().parents[1]
+SRC = ROOT / "src"
+PACKAGE = "pendulab"
+
+#: The layers, bottom first. A name covers the module and, for a package, every module in it.
+LAYERS: dict[str, tuple[str, ...]] = {
+    "base": ("errors", "exact", "cases", "methods", "constants", "_version", "_atomic", "_extras"),
+    "boundary": ("inputs", "_validate"),
+    "kernels": ("_kernels", "_agm", "_libm", "_warm"),
+    "numerics": ("results", "period", "taylor", "crossing", "dense", "interpolation", "newton", "lsq",
+                 "quadrature", "uncertainty", "motion", "approximations", "group"),
+    "jobs": ("problems", "key", "sweep", "programs"),
+    "presenters": ("cli", "report", "web", "plots", "words", "__main__", ""),  # "": the package's face
+}
+
+#: Private names that one module takes from another, each with its reason. Keep it short.
+PRIVATE_ALLOWED: dict[tuple[str, str], str] = {}
+
+
+def module_name(path: Path) -> str:
+    parts = list(path.relative_to(SRC).with_suffix("").parts)
+    if parts[-1] == "__init__":
+        parts.pop()
+    return ".".join(parts)
+
+
+@cache
+def modules() -> dict[str, Path]:
+    return {module_name(p): p for p in sorted((SRC / PACKAGE).rglob("*.py"))}
+
+
+@cache
+def tree(module: str) -> ast.Module:
+    return ast.parse(modules()[module].read_text(encoding="utf-8"))
+
+
+def layer_of(module: str) -> int:
+    """The index in :data:`LAYERS` of ``module`` (``pendulab.sweep.kernel`` is in ``sweep``'s)."""
+    top = module.split(".")[1] if "." in module else ""
+    for i, names in enumerate(LAYERS.values()):
+        if top in names:
+            return i
+    raise AssertionError(f"{module} is in no layer: add it to LAYERS (and to docs/design.md)")
+
+
+def imports(module: str) -> list[tuple[str, str, int]]:
+    """``(target module, name taken or "", line)`` for every import of the package in ``module``."""
+    path = modules()[module]
+    package = module if path.name == "__init__.py" else module.rpartition(".")[0]
+    out = []
+    for node in ast.walk(tree(module)):
+        if isinstance(node, ast.Import):
+            out += [(a.name, "", node.lineno) for a in node.names if a.name.split(".")[0] == PACKAGE]
+        elif isinstance(node, ast.ImportFrom):
+            if node.level:
+                base = package.split(".")[: len(package.split(".")) - node.level + 1]
+                target = ".".join(base + ([node.module] if node.module else []))
+            else:
+                target = node.module or ""
+            if target.split(".")[0] != PACKAGE:
+                continue
+            for a in node.names:
+                sub = f"{target}.{a.name}"
+                # ``from . import inputs`` imports the module pendulab.inputs, not a name of pendulab
+                out.append((sub, "", node.lineno) if sub in modules() else (target, a.name, node.lineno))
+    return out
+
+
+def private_attributes(module: str) -> list[tuple[str, str, int]]:
+    """``(module, name, line)`` for each ``alias._x`` where ``alias`` is a module of the package."""
+    aliases: dict[str, str] = {}
+    package = module if modules()[module].name == "__init__.py" else module.rpartition(".")[0]
+    for node in ast.walk(tree(module)):
+        if isinstance(node, ast.ImportFrom) and node.level:
+            base = ".".join(package.split(".")[: len(package.split(".")) - node.level + 1]
+                            + ([node.module] if node.module else []))
+            for a in node.names:
+                if f"{base}.{a.name}" in modules():
+                    aliases[a.asname or a.name] = f"{base}.{a.name}"
+    return [(aliases[n.value.id], n.attr, n.lineno) for n in ast.walk(tree(module))
+            if isinstance(n, ast.Attribute) and isinstance(n.value, ast.Name) and n.value.id in aliases
+            and _private(n.attr) and f"{aliases[n.value.id]}.{n.attr}" not in modules()]
+
+
+def _private(name: str) -> bool:
+    return name.startswith("_") and not (name.startswith("__") and name.endswith("__"))
+
+
+def test_every_module_has_a_layer():
+    for module in modules():
+        layer_of(module)
+
+
+def test_no_import_runs_upward():
+    names = list(LAYERS)
+    upward = [f"{m}:{line} ({names[layer_of(m)]}) imports {t} ({names[layer_of(t)]})"
+              for m in modules() for t, _, line in imports(m)
+              if t in modules() and layer_of(t) > layer_of(m)]
+    assert not upward, "\n".join(upward)
+
+
+def test_no_import_circle():
+    graph = {m: sorted({t for t, _, _ in imports(m) if t in modules() and t != m}) for m in modules()}
+    # A package's __init__ importing its own modules is how a package hands names on; a
+    # module of it importing the package's face back would be a circle and is kept.
+    circles, state = [], dict.fromkeys(graph, 0)  # 0 new, 1 on the path, 2 done
+
+    def visit(m: str, path: list[str]) -> None:
+        state[m] = 1
+        for t in graph[m]:
+            if state[t] == 1:
+                circles.append(" -> ".join(path[path.index(t):] + [m, t]) if t in path else f"{m} -> {t}")
+            elif state[t] == 0:
+                visit(t, path + [m])
+        state[m] = 2
+
+    for m in graph:
+        if state[m] == 0:
+            visit(m, [])
+    assert not circles, "\n".join(circles)
+
+
+def test_no_private_name_crosses_modules():
+    found = {(m, f"{t}.{name}"): line for m in modules() for t, name, line in imports(m) if _private(name)}
+    found |= {(m, f"{t}.{name}"): line for m in modules() for t, name, line in private_attributes(m)}
+    bad = [f"{m}:{line} uses {name}" for (m, name), line in found.items() if (m, name) not in PRIVATE_ALLOWED]
+    assert not bad, "\n".join(bad)
+    stale = [k for k in PRIVATE_ALLOWED if k not in found]
+    assert not stale, f"allowed but no longer used (remove from PRIVATE_ALLOWED): {stale}"
+
+
+def test_results_carry_no_words_and_jobs_no_typesetting():
+    """Results and jobs hold decisions; the catalogues and the typesetter belong to the presenters."""
+    for m in modules():
+        if layer_of(m) < list(LAYERS).index("presenters"):
+            for t, _, line in imports(m):
+                assert layer_of(t) < list(LAYERS).index("presenters"), f"{m}:{line} imports {t}"
+
+
+# --------------------------------------------------------------------------- the checker itself
+def test_the_checker_sees_function_level_relative_imports(tmp_path, monkeypatch):
+    """A function-level ``from .period import _x`` in a boundary module is an upward, private import."""
+    pkg = tmp_path / PACKAGE
+    pkg.mkdir()
+    (pkg / "__init__.py").write_text("")
+    (pkg / "period.py").write_text("from .inputs import parse\n\ndef _x():\n    return 1\n")
+    (pkg / "inputs.py").write_text("def parse():\n    from .period import _x\n    return _x()\n")
+    monkeypatch.setattr(sys.modules[__name__], "SRC", tmp_path)
+    modules.cache_clear()
+    tree.cache_clear()
+    try:
+        assert ("pendulab.period", "_x", 2) in imports("pendulab.inputs")
+        with pytest.raises(AssertionError, match="inputs:2"):
+            test_no_import_runs_upward()
+        with pytest.raises(AssertionError, match=r"pendulab\.inputs -> pendulab\.period|pendulab\.period -> pendulab\.inputs"):
+            test_no_import_circle()
+        with pytest.raises(AssertionError, match=r"uses pendulab\.period\._x"):
+            test_no_private_name_crosses_modules()
+    finally:
+        modules.cache_clear()
+        tree.cache_clear()
+
+
+def test_design_page_lists_the_same_layers():
+    """docs/design.md's layer table names every module of :data:`LAYERS`, each on its layer's line."""
+    text = (ROOT / "docs" / "design.md").read_text(encoding="utf-8")
+    table = text.split("<!-- layers -->")[1]
+    for layer, names in LAYERS.items():
+        line = next((ln for ln in table.splitlines() if re.match(rf"\|\s*{layer}\s*\|", ln)), None)
+        assert line is not None, layer
+        for name in names:
+            if not name.startswith("__") and name in {p.split(".")[1] for p in modules() if "." in p}:
+                assert f"`{name}`" in line, (layer, name)
