@@ -1,4 +1,4 @@
-"""What the benchmarks share: the plain C loops (compiled here with ``cc -O2``) and the timer.
+"""What the benchmarks share: the plain C loops (compiled here with ``cc -O2``), the timer and the table.
 
 The C loops are equations (3) exactly as the numba kernels run them: ``taylor2`` stores
 every point (as ``pendulab._kernels.trajectory``), ``taylor2_return`` streams to the first
@@ -77,3 +77,23 @@ def side_by_side(fns: dict[str, Callable[[], object]], repeat: int = 5) -> dict[
             f()
             best[k] = min(best[k], time.perf_counter() - t)
     return best
+
+
+def ratio(row: dict) -> float | None:
+    """pendulab's value over the peer's: a rate (higher is better) or a time (lower is better)."""
+    if row.get("peer") in (None, 0):
+        return None
+    return row["ours"] / row["peer"]
+
+
+def print_table(rows: list[dict]) -> None:
+    """One line per row: what, ours, peer, ratio (higher is better for pendulab), target."""
+    print(f"| {'what':66} | {'pendulab':>9} | {'peer':26} | {'peer value':>10} | {'ratio':>6} | {'target':11} |")
+    print(f"|{'-' * 68}|{'-' * 11}|{'-' * 28}|{'-' * 12}|{'-' * 8}|{'-' * 13}|")
+    for r in rows:
+        rt = ratio(r)
+        peer = "" if r.get("peer") is None else f"{r['peer']:.3g}"
+        print(f"| {r['what']:66} | {r['ours']:>9.3g} | {r['peer_name']:26} | {peer:>10} | "
+              f"{'' if rt is None else f'{rt:.2f}x':>6} | {r['target']:11} |")
+        if r.get("note"):
+            print(f"|   {r['note']} | | | | | |")

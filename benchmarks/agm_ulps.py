@@ -59,7 +59,7 @@ def ulps_rows(n: int = 100_000) -> list[dict]:
 
 
 def main() -> None:
-    from run import print_table
+    from _peers import print_table
 
     print_table(ulps_rows(int(sys.argv[1]) if len(sys.argv) > 1 else 100_000))
 

@@ -100,7 +100,7 @@ def period_rows(repeat: int = 5) -> list[dict]:
 
 
 def main() -> None:
-    from run import print_table
+    from _peers import print_table
 
     print_table(taylor_rows(build_c()) + period_rows())
 

@@ -81,7 +81,7 @@ def start_rows() -> list[dict]:
 
 
 def main() -> None:
-    from run import print_table
+    from _peers import print_table
 
     print_table(start_rows())
 

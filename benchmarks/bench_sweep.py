@@ -55,7 +55,7 @@ def sweep_rows(dll, h: float = 1e-4, repeat: int = 3) -> list[dict]:
 
 
 def main() -> None:
-    from run import print_table
+    from _peers import print_table
 
     h = float(sys.argv[1]) if len(sys.argv) > 1 else 1e-4
     print_table(sweep_rows(build_c(), h))

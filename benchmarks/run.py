@@ -21,30 +21,10 @@ from pathlib import Path
 sys.path.insert(0, str(Path(__file__).resolve().parent))
 
 
-def ratio(row: dict) -> float | None:
-    """pendulab's value over the peer's: a rate (higher is better) or a time (lower is better)."""
-    if row.get("peer") in (None, 0):
-        return None
-    return row["ours"] / row["peer"]
-
-
-def print_table(rows: list[dict]) -> None:
-    """One line per row: what, ours, peer, ratio (higher is better for pendulab), target."""
-    print(f"| {'what':66} | {'pendulab':>9} | {'peer':26} | {'peer value':>10} | {'ratio':>6} | {'target':11} |")
-    print(f"|{'-' * 68}|{'-' * 11}|{'-' * 28}|{'-' * 12}|{'-' * 8}|{'-' * 13}|")
-    for r in rows:
-        rt = ratio(r)
-        peer = "" if r.get("peer") is None else f"{r['peer']:.3g}"
-        print(f"| {r['what']:66} | {r['ours']:>9.3g} | {r['peer_name']:26} | {peer:>10} | "
-              f"{'' if rt is None else f'{rt:.2f}x':>6} | {r['target']:11} |")
-        if r.get("note"):
-            print(f"|   {r['note']} | | | | | |")
-
-
 def main() -> None:
     quick = "--quick" in sys.argv
     repeat = 3 if quick else 5
-    from _peers import build_c
+    from _peers import build_c, print_table
     from agm_ulps import ulps_rows
     from bench_core import period_rows, taylor_rows
     from bench_start import start_rows
