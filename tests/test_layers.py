@@ -26,7 +26,7 @@ LAYERS: dict[str, tuple[str, ...]] = {
     "kernels": ("_kernels", "_agm", "_libm", "_warm"),
     "numerics": ("results", "period", "taylor", "crossing", "dense", "interpolation", "newton", "lsq",
                  "quadrature", "uncertainty", "motion", "approximations", "group"),
-    "jobs": ("problems", "key", "sweep", "programs"),
+    "jobs": ("problems", "key", "sweep", "coursework"),
     "presenters": ("cli", "report", "web", "plots", "words", "__main__", ""),  # "": the package's face
 }
 
@@ -43,7 +43,10 @@ def module_name(path: Path) -> str:
 
 @cache
 def modules() -> dict[str, Path]:
-    return {module_name(p): p for p in sorted((SRC / PACKAGE).rglob("*.py"))}
+    """The package's modules: files in folders with an ``__init__.py`` (``programs/``, the
+    coursework's stand-alone files, is package data and imports nothing of the package)."""
+    return {module_name(p): p for p in sorted((SRC / PACKAGE).rglob("*.py"))
+            if all((d / "__init__.py").is_file() for d in p.parents if d.is_relative_to(SRC / PACKAGE))}
 
 
 @cache
