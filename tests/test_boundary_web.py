@@ -24,7 +24,7 @@ BASE = {"length": "1", "amplitude": "1", "step": "0.01", "t_max": "2", "steps": 
 
 @pytest.fixture(scope="module")
 def client():
-    return TestClient(create_app(), raise_server_exceptions=False)
+    return TestClient(create_app(), base_url="http://localhost", raise_server_exceptions=False)
 
 
 def endpoints() -> dict[str, list[str]]:

@@ -23,7 +23,7 @@ from pendulab.web import create_app, limits, parameters, sampling, views
 
 @pytest.fixture(scope="module")
 def client():
-    return TestClient(create_app())
+    return TestClient(create_app(), base_url="http://localhost")
 
 
 # Figure 3 of the coursework (l = 1, alpha = pi/4, h = 0.1), 12 significant digits as the coursework prints them.
@@ -305,7 +305,7 @@ def test_unknown_paths_are_json_404(client, path):
 
 
 def test_an_internal_error_is_500_and_the_server_keeps_serving(monkeypatch):
-    c = TestClient(create_app(), raise_server_exceptions=False)
+    c = TestClient(create_app(), base_url="http://localhost", raise_server_exceptions=False)
 
     def boom(params, stop):
         raise RuntimeError("a bug")

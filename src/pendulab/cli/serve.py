@@ -3,7 +3,9 @@ from __future__ import annotations
 
 import contextlib
 import errno
+import ipaddress
 import socket
+from collections.abc import Callable
 
 import click
 
@@ -52,19 +54,65 @@ def lan_addresses() -> list[str]:
     return out
 
 
+def bound_to(host: str) -> list[ipaddress.IPv4Address | ipaddress.IPv6Address]:
+    """The addresses ``host`` names (``0`` and ``0.0.0.0``: every IPv4 interface)."""
+    found = []
+    for info in socket.getaddrinfo(host or None, None, type=socket.SOCK_STREAM):
+        a = ipaddress.ip_address(str(info[4][0]).split("%")[0])
+        if a not in found:
+            found.append(a)
+    return found
+
+
+def every_interface(host: str) -> bool:
+    return any(a.is_unspecified for a in bound_to(host))
+
+
+def exposed(host: str) -> bool:
+    """Whether binding ``host`` lets other computers connect (any address not loopback)."""
+    return any(not a.is_loopback for a in bound_to(host))
+
+
 def urls(host: str, port: int) -> list[str]:
     """The addresses to open the explorer at: for ``0.0.0.0``/``::``, this machine's LAN addresses."""
-    if host in ("0.0.0.0", "::", ""):
+    if every_interface(host):
         return [f"http://{a}:{port}/" for a in lan_addresses()] + [f"http://127.0.0.1:{port}/"]
     shown = f"[{host}]" if ":" in host else host
     return [f"http://{shown}:{port}/"]
+
+
+def allowed_hosts(host: str, extra: tuple[str, ...] = ()) -> list[str]:
+    """The names a request's Host header may give: this computer's, the address bound (or
+    for every interface, the LAN addresses printed), and ``extra`` (``--allow-host``)."""
+    from ..web.guard import LOCAL_HOSTS
+
+    names = [*LOCAL_HOSTS, host, *(str(a) for a in bound_to(host) if not a.is_unspecified), *extra]
+    if every_interface(host):
+        names += lan_addresses()
+    return list(dict.fromkeys(n.lower() for n in names if n))
+
+
+def _quietly(job: Callable[[], None]) -> None:
+    """Run ``job``; a failure is one line on stderr (the warm-up only saves the first visitor time)."""
+    try:
+        job()
+    except Exception as exc:  # whatever it is, the server serves on
+        click.echo(f"pendulab serve: warm-up skipped ({type(exc).__name__}: {exc})", err=True)
+
+
+#: Printed for every bind that other computers can reach.
+EXPOSED = ("note: other computers on the network can open this explorer (there is no login), and run simulations "
+           "on this machine; to serve this computer only: pendulab serve --host 127.0.0.1")
 
 
 @click.command()
 @click.option("--port", type=integer(1, 65535), default="8000", show_default=True, help="TCP port to listen on.")
 @click.option("--host", default="127.0.0.1", show_default=True,
               help="Address to bind; the default serves this computer only (0.0.0.0: the whole network).")
-def serve(port: int, host: str) -> None:
+@click.option("--allow-host", multiple=True, metavar="NAME",
+              help="Another host name the page may be opened at (such as mybox.local); repeatable. "
+                   "Requests naming any other host are refused.")
+def serve(port: int, host: str, allow_host: tuple[str, ...]) -> None:
     """Start the web explorer: simulate, animate and plot the pendulum in the browser."""
     from .._extras import require
 
@@ -82,15 +130,14 @@ def serve(port: int, host: str) -> None:
 
     import threading
 
-    import uvicorn
-
     from .._warm import warm_kernels
     from ..web import create_app
+    from ..web.server import run
     from ..web.views import warm
 
     warm_kernels()  # the library's kernels compiled (or loaded) while the server starts
     # and the explorer's own (web/_view.py), through one tiny request.
-    threading.Thread(target=warm, name="pendulab-warm-web", daemon=True).start()
+    threading.Thread(target=_quietly, args=(warm,), name="pendulab-warm-web", daemon=True).start()
     where = urls(host, port)
     if len(where) == 1:
         click.echo(f"pendulab explorer: {where[0]}   (Ctrl+C to stop)", err=True)
@@ -98,4 +145,6 @@ def serve(port: int, host: str) -> None:
         click.echo("pendulab explorer, open one of these (Ctrl+C to stop):", err=True)
         for u in where:
             click.echo(f"  {u}", err=True)
-    uvicorn.run(create_app(), host=host, port=port, log_level="warning")
+    if exposed(host):
+        click.echo(EXPOSED, err=True)
+    run(create_app(allowed_hosts(host, allow_host)), host, port)

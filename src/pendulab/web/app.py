@@ -12,6 +12,8 @@ Routes
 ``GET /api/trajectory.csv``   the trajectory as CSV, streamed block by block
 ``GET /api/docs``             the API's documentation (Swagger UI from ``swagger-ui-bundle``: offline)
 
+Every route answers ``HEAD`` as well; a request for any host but this computer (or the
+addresses ``pendulab serve`` was bound to) gets 400 (:mod:`pendulab.web.guard`).
 A bad or missing parameter gives status 422 and ``{"error": {"field", "value",
 "allowed", "message"}}``; no input crashes the server.
 
@@ -33,7 +35,7 @@ import contextlib
 import logging
 import os
 import threading
-from collections.abc import AsyncIterator, Callable
+from collections.abc import AsyncIterator, Callable, Iterable
 from concurrent.futures import ThreadPoolExecutor
 from importlib import resources
 from pathlib import Path
@@ -46,7 +48,7 @@ from fastapi.responses import FileResponse, HTMLResponse, JSONResponse, Response
 from starlette.exceptions import HTTPException as StarletteHTTPException
 
 from ..errors import InputError
-from . import limits, models, views
+from . import guard, limits, models, views
 
 STATIC = Path(__file__).parent / "static"
 _log = logging.getLogger("pendulab.web")
@@ -158,11 +160,16 @@ Points = Annotated[str | None, Query(description="At most this many points retur
 Steps = Annotated[str | None, Query(description="Steps h, comma-separated, 1 to 40 (default 13 steps from 0.1 to 1e-4)")]
 
 
-def create_app() -> FastAPI:
-    """The explorer as an ASGI app (``uvicorn.run(create_app())``)."""
+def create_app(allowed_hosts: Iterable[str] = guard.LOCAL_HOSTS) -> FastAPI:
+    """The explorer as an ASGI app (``uvicorn.run(create_app())``).
+
+    ``allowed_hosts``: the host names and addresses a request's ``Host`` header may name
+    (:class:`pendulab.web.guard.Guard`); others get status 400.
+    """
     # OpenAPI 3.0 labelling: the Swagger UI that swagger-ui-bundle ships (4.x) reads 3.0 only.
     app = FastAPI(title="pendulab explorer", docs_url=None, redoc_url=None, openapi_url="/api/openapi.json")
     app.openapi_version = "3.0.3"
+    app.add_middleware(guard.Guard, allowed_hosts=allowed_hosts)
 
     @app.exception_handler(RequestValidationError)
     async def _validation(request: Request, exc: RequestValidationError) -> JSONResponse:

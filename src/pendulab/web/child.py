@@ -9,7 +9,8 @@ import tempfile
 import time
 import urllib.error
 import urllib.request
-from collections.abc import Iterator
+from collections.abc import Callable, Iterator
+from typing import IO
 
 
 def free_port() -> int:
@@ -20,23 +21,42 @@ def free_port() -> int:
 
 
 class Served(str):
-    """``http://127.0.0.1:N``, with the server process's ``pid`` (to read its memory)."""
+    """``http://127.0.0.1:N``, with the server process's ``pid`` (to read its memory) and ``port``."""
 
     pid: int
+    port: int
+    _log: IO[str]
+
+    def output(self) -> str:
+        """What the server has written to stdout and stderr so far."""
+        self._log.flush()
+        self._log.seek(0)
+        return self._log.read()
+
+
+def _descriptors(limit: int) -> Callable[[], None]:
+    def set_limit() -> None:
+        import resource
+
+        resource.setrlimit(resource.RLIMIT_NOFILE, (limit, limit))
+
+    return set_limit
 
 
 @contextlib.contextmanager
-def serve_in_child(timeout: float = 60.0) -> Iterator[Served]:
+def serve_in_child(timeout: float = 60.0, descriptors: int | None = None) -> Iterator[Served]:
     """Start the real ``pendulab serve --port N``; yield ``http://127.0.0.1:N``; stop it.
 
-    Waits until ``/api/config`` answers. Raises ``RuntimeError`` with the server's
-    output when it exits or does not answer within ``timeout`` seconds.
+    ``descriptors``: the child's limit on open files (``ulimit -n``). Waits until
+    ``/api/config`` answers. Raises ``RuntimeError`` with the server's output when it
+    exits or does not answer within ``timeout`` seconds.
     """
     port = free_port()
     cmd = [sys.executable, "-m", "pendulab", "serve", "--port", str(port)]
     base = f"http://127.0.0.1:{port}"
     with tempfile.TemporaryFile("w+") as log:
-        proc = subprocess.Popen(cmd, stdout=log, stderr=subprocess.STDOUT)
+        proc = subprocess.Popen(cmd, stdout=log, stderr=subprocess.STDOUT,
+                                preexec_fn=None if descriptors is None else _descriptors(descriptors))
         try:
             deadline = time.monotonic() + timeout
             while True:
@@ -51,7 +71,7 @@ def serve_in_child(timeout: float = 60.0) -> Iterator[Served]:
                     raise RuntimeError(f"pendulab serve did not start: {log.read().strip() or 'timeout'}")
                 time.sleep(0.2)
             served = Served(base)
-            served.pid = proc.pid
+            served.pid, served.port, served._log = proc.pid, port, log
             yield served
         finally:
             proc.terminate()

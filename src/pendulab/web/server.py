@@ -1,0 +1,187 @@
+"""The explorer's HTTP server: uvicorn (h11) with bounds on what a client may hold.
+
+uvicorn waits for a request's headers for ever and accepts every connection; a client that
+opens connections and sends half a request line (or nothing) would hold the server's file
+descriptors until none is left. :class:`GuardedH11` bounds that:
+
+- **header timeout**: a connection whose request headers are not complete within
+  :data:`HEADER_TIMEOUT` seconds of its first byte (or of connecting) is closed;
+- **write stall**: a client that reads nothing of an answer for :data:`STALL_TIMEOUT`
+  seconds is dropped, with the answer's bytes still buffered for it;
+- **connection cap**: at most :func:`connection_cap` connections, below the process's
+  descriptor limit less a batch of accepts (:func:`accept_batch`); a new one past the cap
+  closes the oldest connection still waiting for its headers, or is itself closed when
+  every connection is busy.
+
+An accept that still fails for want of descriptors is logged once a minute in one line
+(:func:`quiet_accept_errors`); asyncio alone logs a traceback per attempt, thousands a
+second.
+"""
+from __future__ import annotations
+
+import asyncio
+import logging
+import os
+import time
+from typing import Any
+
+import h11
+from uvicorn.protocols.http.h11_impl import H11Protocol
+
+#: Seconds a connection may take to send its request headers.
+HEADER_TIMEOUT = 10.0
+#: Seconds a client may read nothing of an answer before it is dropped.
+STALL_TIMEOUT = 30.0
+#: At most this many connections, whatever the descriptor limit.
+MAX_CONNECTIONS = 512
+#: Descriptors kept for everything but connections (the listening socket, files, numba's cache).
+_RESERVE = 32
+
+_log = logging.getLogger("pendulab.web")
+
+
+def _descriptors_free() -> int | None:
+    """Descriptors this process may still open (``ulimit -n`` less those open), or None when unlimited."""
+    try:
+        import resource
+
+        soft = resource.getrlimit(resource.RLIMIT_NOFILE)[0]
+    except (ImportError, OSError, ValueError):
+        return None
+    if soft == resource.RLIM_INFINITY:
+        return None
+    try:
+        used = len(os.listdir("/proc/self/fd"))
+    except OSError:
+        used = 16
+    return soft - used - _RESERVE
+
+
+def accept_batch() -> int:
+    """Connections accepted at once (the listen backlog): asyncio accepts this many before
+    the protocol sees any, so the cap must leave room for a whole batch."""
+    free = _descriptors_free()
+    return 2048 if free is None else max(4, min(2048, free // 4))
+
+
+def connection_cap(most: int = MAX_CONNECTIONS) -> int:
+    """Connections allowed: ``most``, fewer where the descriptor limit (``ulimit -n``) is low."""
+    free = _descriptors_free()
+    return most if free is None else max(4, min(most, free - accept_batch()))
+
+
+class GuardedH11(H11Protocol):
+    """uvicorn's h11 protocol with a header timeout, a write-stall timeout and a connection cap.
+
+    The limits are class attributes; :func:`protocol` makes a subclass with others.
+    """
+
+    header_timeout: float = HEADER_TIMEOUT
+    stall_timeout: float = STALL_TIMEOUT
+    max_connections: int = MAX_CONNECTIONS
+    #: Connections still waiting for their request's headers, oldest first (shared by the class).
+    waiting: dict[GuardedH11, float]
+
+    def __init__(self, *args: Any, **kwargs: Any):
+        super().__init__(*args, **kwargs)
+        self._header_timer: asyncio.TimerHandle | None = None
+        self._stall_timer: asyncio.TimerHandle | None = None
+
+    def connection_made(self, transport: asyncio.Transport) -> None:  # type: ignore[override]
+        super().connection_made(transport)
+        if len(self.connections) > self.max_connections:
+            oldest = next(iter(self.waiting), None)
+            if oldest is None:  # every connection is at work: this one waits for a free place
+                transport.abort()
+                return
+            oldest._drop()
+        self._wait_for_headers()
+
+    def connection_lost(self, exc: Exception | None) -> None:
+        self._headers_done()
+        if self._stall_timer is not None:
+            self._stall_timer.cancel()
+            self._stall_timer = None
+        super().connection_lost(exc)
+
+    def data_received(self, data: bytes) -> None:
+        super().data_received(data)
+        if self.transport.is_closing():
+            self._headers_done()
+        elif self.conn.their_state is h11.IDLE:  # a request begun, its headers not all here
+            self._wait_for_headers()
+        else:
+            self._headers_done()
+
+    def pause_writing(self) -> None:
+        super().pause_writing()
+        if self._stall_timer is None:
+            self._stall_timer = self.loop.call_later(self.stall_timeout, self._drop)
+
+    def resume_writing(self) -> None:
+        super().resume_writing()
+        if self._stall_timer is not None:
+            self._stall_timer.cancel()
+            self._stall_timer = None
+
+    def _wait_for_headers(self) -> None:
+        if self._header_timer is None:
+            self._header_timer = self.loop.call_later(self.header_timeout, self._drop)
+            self.waiting[self] = time.monotonic()
+
+    def _headers_done(self) -> None:
+        if self._header_timer is not None:
+            self._header_timer.cancel()
+            self._header_timer = None
+        self.waiting.pop(self, None)
+
+    def _drop(self) -> None:
+        """Close the connection at once (its unsent bytes are discarded)."""
+        self._headers_done()
+        if not self.transport.is_closing():
+            self.transport.abort()
+
+
+def protocol(header_timeout: float = HEADER_TIMEOUT, stall_timeout: float = STALL_TIMEOUT,
+             max_connections: int | None = None) -> type[GuardedH11]:
+    """A :class:`GuardedH11` with these limits and its own list of waiting connections."""
+    return type("GuardedH11", (GuardedH11,), {
+        "header_timeout": header_timeout, "stall_timeout": stall_timeout,
+        "max_connections": connection_cap() if max_connections is None else max_connections, "waiting": {},
+    })
+
+
+def quiet_accept_errors(loop: asyncio.AbstractEventLoop, every: float = 60.0) -> None:
+    """Log a failed accept (no descriptor left) in one line, at most once per ``every`` seconds.
+
+    Other errors go to the loop's default handler as before.
+    """
+    last = [-float("inf")]
+
+    def handler(loop: asyncio.AbstractEventLoop, context: dict[str, Any]) -> None:
+        exc = context.get("exception")
+        if context.get("message", "").startswith("socket.accept() out of system resource"):
+            now = time.monotonic()
+            if now - last[0] >= every:
+                last[0] = now
+                _log.warning("cannot accept connections: %s (waiting for descriptors to free; "
+                             "at most one such line a minute)", getattr(exc, "strerror", None) or exc)
+            return
+        loop.default_exception_handler(context)
+
+    loop.set_exception_handler(handler)
+
+
+def run(app: Any, host: str, port: int, **limits: Any) -> None:
+    """Serve ``app`` on ``host:port`` until Ctrl+C, with the bounds of :func:`protocol` (``limits``)."""
+    import uvicorn
+
+    config = uvicorn.Config(app, host=host, port=port, http=protocol(**limits), loop="asyncio",
+                            log_level="warning", timeout_keep_alive=5, backlog=accept_batch())
+    server = uvicorn.Server(config)
+
+    async def main() -> None:
+        quiet_accept_errors(asyncio.get_running_loop())
+        await server.serve()
+
+    asyncio.run(main())  # Ctrl+C: uvicorn shuts down, then raises KeyboardInterrupt as uvicorn.run does

@@ -1,0 +1,282 @@
+"""The explorer against hostile clients: each finding reproduced, on 127.0.0.1 only, in bounded loops.
+
+- a request naming another host (DNS rebinding) is refused; redirects never name a host;
+- HEAD is answered where GET is;
+- every bind other computers can reach prints the exposure notice;
+- connections that never finish their headers are closed, and cannot lock others out;
+- under a 128-descriptor limit a flood of such connections leaves a quiet log and a
+  server that answers;
+- the work of a client that has gone is stopped (the server's CPU time shows it).
+"""
+from __future__ import annotations
+
+import contextlib
+import math
+import os
+import socket
+import threading
+import time
+
+import httpx
+import numpy as np
+import pytest
+from fastapi.testclient import TestClient
+
+from pendulab.cli import main
+from pendulab.web import create_app, limits, parameters, sampling, server
+from pendulab.web.child import free_port, serve_in_child
+from pendulab.web.guard import host_name
+
+
+@pytest.fixture(scope="module")
+def client():
+    return TestClient(create_app(), base_url="http://localhost")
+
+
+# ------------------------------------------------------------------ Host allow-list, redirects, HEAD
+
+@pytest.mark.parametrize("host", ["localhost", "localhost:8000", "127.0.0.1:8000", "[::1]:8000", "LOCALHOST.", "[::1]"])
+def test_this_computers_names_are_answered(client, host):
+    assert client.get("/api/config", headers={"host": host}).status_code == 200
+
+
+@pytest.mark.parametrize("host", ["evil.example", "evil.example:8000", "127.0.0.1.evil.example", "localhost.evil.example",
+                                  "[::1", "[::1]x", "localhost:80:80", "", "10.0.0.5", "127.0.0.2"])
+def test_other_hosts_are_refused(client, host):
+    r = client.get("/api/config", headers={"host": host})
+    assert r.status_code == 400 and "Host header" in r.json()["error"]["message"]
+    assert client.get("/", headers={"host": host}).status_code == 400
+
+
+def test_host_name_parsing():
+    assert host_name("[::1]:8000") == "::1" and host_name("LocalHost.:80") == "localhost"
+    assert host_name("a:b") is None and host_name("[::1]:x:y") is None
+
+
+def test_allowed_hosts_are_the_bound_addresses(monkeypatch):
+    from pendulab.cli import serve as serve_cmd
+
+    monkeypatch.setattr(serve_cmd, "lan_addresses", lambda: ["192.168.1.20"])
+    every = serve_cmd.allowed_hosts("0.0.0.0")
+    assert "192.168.1.20" in every and "localhost" in every and "evil.example" not in every
+    one = serve_cmd.allowed_hosts("127.0.0.1", ("mybox.local",))
+    assert "192.168.1.20" not in one and "mybox.local" in one
+    app = create_app(every)
+    c = TestClient(app, base_url="http://192.168.1.20:8000")
+    assert c.get("/api/config").status_code == 200
+    assert c.get("/api/config", headers={"host": "192.168.1.21:8000"}).status_code == 400
+
+
+def test_redirects_are_relative(client):
+    r = client.get("/api/config/?x=1", follow_redirects=False)
+    assert 300 <= r.status_code < 400 and r.headers["location"] == "/api/config?x=1"
+    # The redirect of a refused host is never built: 400 first.
+    r = client.get("/api/config/", headers={"host": "evil.example"}, follow_redirects=False)
+    assert r.status_code == 400 and "location" not in r.headers
+
+
+@pytest.mark.parametrize("path", ["/", "/static/app.js", "/api/config", "/api/period?length=1&amplitude=1",
+                                  "/api/simulate?length=1&amplitude=1&step=0.01&t_max=2", "/api/openapi.json"])
+def test_head_where_get_is(client, path):
+    get = client.get(path)
+    head = client.head(path)
+    assert head.status_code == 200 == get.status_code
+    assert head.content == b"" and head.headers["content-type"] == get.headers["content-type"]
+    if "content-length" in get.headers:
+        assert head.headers["content-length"] == get.headers["content-length"]
+
+
+def test_head_of_a_stream_stops_after_the_headers(client):
+    q = {"length": "1", "amplitude": "1", "step": "1e-6", "t_max": "10"}  # 10^7 rows if read
+    r = client.head("/api/trajectory.csv", params=q)
+    assert r.status_code == 200 and r.content == b"" and r.headers["content-type"].startswith("text/csv")
+    assert client.head("/api/nothing").status_code == 404
+
+
+def test_openapi_lists_get_only(client):
+    schema = client.get("/api/openapi.json").json()
+    assert all(set(ops) == {"get"} for ops in schema["paths"].values())
+
+
+# ------------------------------------------------------------------ the exposure notice
+
+@pytest.mark.parametrize("host, notice", [("127.0.0.1", False), ("localhost", False), ("0", True), ("0.0.0.0", True)])
+def test_exposure_notice_for_every_bind_others_reach(capsys, monkeypatch, host, notice):
+    from pendulab.cli import serve as serve_cmd
+
+    ran = {}
+    monkeypatch.setattr(server, "run", lambda app, h, p: ran.update(host=h))
+    monkeypatch.setattr(serve_cmd, "lan_addresses", lambda: ["192.168.1.20"])
+    assert main(["serve", "--host", host, "--port", str(free_port())]) == 0
+    err = capsys.readouterr().err
+    assert ran["host"] == host
+    assert ("other computers on the network can open this explorer" in err) is notice
+    assert serve_cmd.exposed(host) is notice
+
+
+def test_a_lan_address_is_exposed():
+    from pendulab.cli import serve as serve_cmd
+
+    assert serve_cmd.exposed("::") and not serve_cmd.exposed("::1")
+    for address in serve_cmd.lan_addresses():
+        assert serve_cmd.exposed(address)
+
+
+# ------------------------------------------------------------------ incomplete headers, connection cap
+
+@contextlib.contextmanager
+def uvicorn_in_thread(**limits_):
+    """The real app on uvicorn with the guarded protocol (these limits), in a thread, on 127.0.0.1."""
+    import uvicorn
+
+    port = free_port()
+    config = uvicorn.Config(create_app(), host="127.0.0.1", port=port, http=server.protocol(**limits_),
+                            loop="asyncio", log_level="warning")
+    srv = uvicorn.Server(config)
+    t = threading.Thread(target=srv.run, daemon=True)
+    t.start()
+    deadline = time.monotonic() + 30
+    while not srv.started:
+        assert time.monotonic() < deadline and t.is_alive()
+        time.sleep(0.05)
+    try:
+        yield port
+    finally:
+        srv.should_exit = True
+        t.join(10)
+
+
+def half_request(port: int, text: bytes = b"GET / HTTP/1.1\r\nHost: loc") -> socket.socket:
+    s = socket.create_connection(("127.0.0.1", port), timeout=5)
+    if text:
+        s.sendall(text)
+    return s
+
+
+def closed_by_server(s: socket.socket, within: float) -> bool:
+    s.settimeout(within)
+    try:
+        return s.recv(1024) == b""
+    except ConnectionResetError:
+        return True
+    except TimeoutError:
+        return False
+
+
+def test_incomplete_headers_time_out():
+    with uvicorn_in_thread(header_timeout=0.5) as port:
+        stalled = [half_request(port), half_request(port, b""), half_request(port, b"GET /api/con")]
+        # A request that trickles its headers in but finishes them in time is answered.
+        ok = half_request(port, b"GET /api/config HTTP/1.1\r\n")
+        time.sleep(0.2)
+        ok.sendall(b"Host: localhost\r\n\r\n")
+        assert ok.recv(12).startswith(b"HTTP/1.1 200")
+        t0 = time.monotonic()
+        assert all(closed_by_server(s, 5.0) for s in stalled)
+        assert time.monotonic() - t0 < 5.0
+        # A kept-alive connection that begins a second request and stalls is closed too.
+        ok.settimeout(5)
+        while b"\r\n\r\n" not in ok.recv(65536):
+            pass
+        ok.sendall(b"GET / HTT")
+        assert closed_by_server(ok, 5.0)
+        for s in stalled + [ok]:
+            s.close()
+
+
+def test_stalled_connections_cannot_lock_others_out():
+    with uvicorn_in_thread(header_timeout=60, max_connections=8) as port:
+        stalled = [half_request(port) for _ in range(30)]
+        # Past the cap each new connection closes the oldest one still waiting for headers.
+        for _ in range(3):
+            r = httpx.get(f"http://127.0.0.1:{port}/api/config", timeout=10)
+            assert r.status_code == 200
+        closed = sum(closed_by_server(s, 0.5) for s in stalled)
+        assert closed >= 30 - 8
+        for s in stalled:
+            s.close()
+
+
+def test_descriptor_limit_keeps_the_log_quiet_and_the_server_answering():
+    # 200 connections with half a request line against a server limited to 128 descriptors.
+    with serve_in_child(descriptors=128) as base:
+        before = base.output()
+        stalled = []
+        for _ in range(200):
+            with contextlib.suppress(OSError):
+                stalled.append(half_request(base.port))
+        time.sleep(2.0)
+        r = httpx.get(base + "/api/config", timeout=10)
+        assert r.status_code == 200
+        log = base.output()[len(before):]
+        assert log.count("\n") <= 2 and "Traceback" not in log, log[:2000]
+        for s in stalled:
+            s.close()
+
+
+# ------------------------------------------------------------------ abandoned work
+
+def cpu_seconds(pid: int) -> float:
+    with open(f"/proc/{pid}/stat") as f:
+        fields = f.read().rsplit(")", 1)[1].split()
+    return (int(fields[11]) + int(fields[12])) / os.sysconf("SC_CLK_TCK")
+
+
+def settle(pid: int, quiet: float = 1.0, deadline: float = 120.0) -> float:
+    """The server's CPU seconds once it has used none for ``quiet`` seconds."""
+    end = time.monotonic() + deadline
+    last = cpu_seconds(pid)
+    while time.monotonic() < end:
+        time.sleep(quiet)
+        now = cpu_seconds(pid)
+        if now - last < 0.05:
+            return now
+        last = now
+    raise AssertionError("the server kept working")
+
+
+HEAVY = {"length": "1", "amplitude": "30deg", "step": "2e-6", "t_max": "20"}  # 10^7 steps of (3): the limit
+
+
+def test_abandoned_work_is_stopped():
+    with serve_in_child() as base:
+        httpx.get(base + "/api/simulate", params=HEAVY, timeout=120)  # warm
+        c0 = settle(base.pid)
+        assert httpx.get(base + "/api/simulate", params=HEAVY, timeout=120).status_code == 200
+        one = settle(base.pid) - c0  # CPU seconds of one whole request
+        n = 3 * limits.SIMULATION_SLOTS
+
+        def abandon() -> None:
+            with contextlib.suppress(httpx.TimeoutException):
+                httpx.get(base + "/api/simulate", params=HEAVY, timeout=0.3)
+
+        threads = [threading.Thread(target=abandon) for _ in range(n)]
+        for t in threads:
+            t.start()
+        for t in threads:
+            t.join()
+        assert httpx.get(base + "/api/config", timeout=10).status_code == 200
+        spent = settle(base.pid) - c0 - one
+        # Run to the end they would cost n * one; stopped, the running ones cost their
+        # first 0.3 s and a chunk, the queued ones nothing.
+        assert spent < n * one / 3, (spent, one, n)
+
+
+def test_the_streamed_pass_stops_between_chunks():
+    p = parameters.simulation(HEAVY)
+    stop = threading.Event()
+    stop.set()
+    with pytest.raises(sampling.Cancelled):
+        sampling.simulate_arrays(p, 2000, stop)
+    # Chunked, the pass keeps exactly what one pass keeps (chunks of 1000 steps here).
+    q = parameters.simulation({"length": "1", "amplitude": "1", "step": "1e-2", "t_max": "50"})
+    whole = sampling.simulate_arrays(q, 500)
+    chunk = sampling.CHUNK_WORK
+    try:
+        sampling.CHUNK_WORK = 1000
+        parts = sampling.simulate_arrays(q, 500)
+    finally:
+        sampling.CHUNK_WORK = chunk
+    for key, value in whole.items():
+        assert np.array_equal(value, parts[key]) if isinstance(value, np.ndarray) else value == parts[key] or (
+            isinstance(value, float) and math.isnan(value) and math.isnan(parts[key])), key
