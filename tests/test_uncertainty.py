@@ -62,7 +62,9 @@ def test_problem1_answer_two_significant_digits():
 
 
 @pytest.mark.parametrize("value, error, digits", [
-    (9.8, 0.05, 2),          # exactly half a unit of the 2nd digit
+    (98.0, 0.5, 2),          # exactly half a unit of the 2nd digit (0.5 is a double)
+    (9.8, 0.05, 1),          # the double 0.05 is 0.05000000000000000277 > 1/20: the rule on its exact value
+    (99.99999999999999, 0.4, 2),  # just below 10^2: log10 rounds to 2.0, the leading digit is at 10^1
     (9.8, 0.0500001, 1),
     (123.4, 0.5, 3),
     (123.4, 0.51, 2),

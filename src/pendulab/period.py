@@ -31,9 +31,18 @@ _MAX_ITERATIONS = 64
 _RTOL = 4 * sys.float_info.epsilon
 #: How far (in ulps) the coursework's 7-iteration ``T^`` of (8), the loop (7) in double
 #: precision, is at most from the correctly rounded period for every amplitude up to
-#: :func:`fixed_iterations_limit`: measured, not proved (``benchmarks/accuracy_claims.py``
-#: against mpmath's K; checked on random amplitudes by the tests).
-FIXED_ITERATIONS_ULPS = 4
+#: :func:`fixed_iterations_limit`. Derived (``u = 2^-53``, relative errors to first order):
+#: ``b0 = cos(alpha/2)`` within 1 ulp (libm), ``2u``; the AGM is homogeneous and
+#: increasing in both arguments, so relative errors of ``a`` and ``b`` reach ``v`` with
+#: weights summing to 1 and each step adds at most ``u`` to ``a`` (the sum) and ``1.5u``
+#: to ``b`` (product ``u/2`` under the root, root ``u``): ``7 x 1.5u``; ``v = (a + b)/2``
+#: ``u``; ``2 pi sqrt(l/g)`` ``0.35u + u/2 + u + u`` (``sqrt(l)/sqrt(g)`` where ``l/g``
+#: over- or underflows: ``4.35u``); the quotient ``u``; the truncation at most ``u`` below
+#: the limit. In all below ``19.85u T < 19.85`` ulps of ``T``, and the correctly rounded
+#: period is within half an ulp of ``T``: at most 20 ulps. The largest found by an
+#: adversarial search (``benchmarks/adversarial.py``, ``t_hat_search``; ``docs/accuracy.md``)
+#: is well below it.
+FIXED_ITERATIONS_ULPS = 20
 
 
 def _is_scalar(x: Any) -> bool:

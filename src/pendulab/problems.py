@@ -211,7 +211,9 @@ def digit_thresholds(value: float, digits: int) -> tuple[int, float, float]:
     An approximation has ``n`` significant digits when its error is at most the first
     bound; the second is the bound for one digit more.
     """
-    k = math.floor(math.log10(abs(value)))
+    from .uncertainty import leading_exponent
+
+    k = leading_exponent(value)  # exact: log10 rounds up just below a power of ten
     return k, 0.5 * 10.0 ** (k - digits + 1), 0.5 * 10.0 ** (k - digits)
 
 
@@ -481,8 +483,9 @@ class Problem5(Result):
     period : float
         The period to convergence, correctly rounded (:func:`~pendulab.period.agm_period`):
         the substituted errors' reference where ``T^`` is more than
-        ``FIXED_ITERATIONS_ULPS`` from it (within about 3e-14 of pi, where 7 iterations
-        have not converged and ``T^`` is up to hundreds of ulp off).
+        ``FIXED_ITERATIONS_ULPS`` from it, more than the loop's rounding can account for
+        (within about 3e-14 of pi, where 7 iterations have not converged: 46 ulp off at
+        the last double below pi, ``benchmarks/adversarial.py``).
     rule : Rule
         Rule (11) (3-point Gauss-Legendre, checked: weights sum 2, degree 5).
     single : float
@@ -534,7 +537,7 @@ class Problem5(Result):
             return None
         return (f"T^ (8) differs from the correctly rounded period T = {self.period!r} s by "
                 f"{self.t_hat - self.period:+.3e} s ({self.t_hat_ulps:+d} ulp, more than the "
-                f"{FIXED_ITERATIONS_ULPS} ulp of rounding): 7 iterations of (7) have not converged this close to pi, "
+                f"{FIXED_ITERATIONS_ULPS} ulp the loop's rounding can account for): 7 iterations of (7) have not converged this close to pi, "
                 "so errors against T^ include T^'s own")
 
 

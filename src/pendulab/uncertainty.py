@@ -25,7 +25,8 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
-from decimal import ROUND_HALF_UP, Decimal
+from decimal import ROUND_HALF_UP, Decimal, localcontext
+from fractions import Fraction
 
 from . import _validate as v
 from .errors import InputError
@@ -58,35 +59,68 @@ def rel_error_bound(length: float, length_error: float, period: float, period_er
     return length_error / length + 2 * period_error / period
 
 
+def leading_exponent(value: float) -> int:
+    """``k = floor(log10 |value|)`` exactly, for a finite non-zero double.
+
+    The decimal exponent of the leading digit of the double's exact value (``Decimal`` of a
+    float is exact): ``math.log10`` rounds up just below a power of ten
+    (``log10(99.99999999999999) == 2.0``) and would claim one digit too many.
+    """
+    return Decimal(value).adjusted()
+
+
 def significant_digits(value: float, error: float, max_digits: int = MAX_DIGITS) -> int:
     """The number ``n`` of significant digits guaranteed for ``value`` by ``|error|``.
 
     The largest ``n`` with ``error <= 0.5 * 10^(k - n + 1)``, ``k = floor(log10|value|)``
-    (module docstring). 0 when the error exceeds half a unit of the leading digit;
-    ``max_digits`` when the error is 0.
+    (module docstring), decided on the exact values of the doubles (``Fraction``), so a
+    value just below a power of ten or an error on a half-unit tie is counted by the rule,
+    not by the rounding of a logarithm. 0 when the error exceeds half a unit of the
+    leading digit (or is not finite); ``max_digits`` when the error is 0.
     """
-    if value == 0:
+    if value == 0 or not math.isfinite(error):
         return 0
     if error <= 0:
         return max_digits
-    k = math.floor(math.log10(abs(value)))
-    # error <= 0.5 * 10^(k - n + 1)  <=>  n <= k + 1 + log10(0.5 / error)
-    n = math.floor(k + 1 + math.log10(0.5 / error))
-    # Guard the floor against log10 rounding right at a boundary.
-    while n + 1 <= max_digits and error <= 0.5 * 10.0 ** (k - n):
+    k = leading_exponent(value)
+    twice = 2 * Fraction(error)
+
+    def holds(n: int) -> bool:  # error <= 0.5 * 10^(k - n + 1), exactly
+        return twice <= Fraction(10) ** (k - n + 1)
+
+    # A first guess from the exponent of the error, then the exact test decides.
+    n = k + 1 - leading_exponent(2 * error if 2 * error < math.inf else error)
+    n = max(0, min(n, max_digits))
+    while n < max_digits and holds(n + 1):
         n += 1
-    while n > 0 and error > 0.5 * 10.0 ** (k - n + 1):
+    while n > 0 and not holds(n):
         n -= 1
-    return max(0, min(n, max_digits))
+    return n
 
 
 def round_significant(value: float, digits: int) -> str:
-    """``value`` rounded half away from zero to ``digits`` significant digits, as text."""
+    """``value`` rounded half away from zero to ``digits`` significant digits, as text.
+
+    The exact value of the double is rounded (``Decimal(value)``), so ``0.125`` gives
+    ``0.13``. A carry into a new leading digit keeps ``digits`` digits of the result:
+    ``9.96`` to 2 digits is ``10``, not ``10.0``. Plain decimal notation (``12``,
+    ``1000``, ``0.0012``), never E-notation, for a leading digit between ``10^-7`` and
+    ``10^20``; beyond, scientific (``1.2E+25``). The digit count is stated with the text
+    wherever it is shown, since ``10`` or ``1000`` does not say it.
+    """
     if digits <= 0 or value == 0:
         return "0"
     d = Decimal(value)
-    quantum = Decimal(1).scaleb(d.adjusted() - digits + 1)
-    return str(d.quantize(quantum, rounding=ROUND_HALF_UP))
+    with localcontext() as ctx:
+        ctx.prec = max(28, digits + 2)
+        for _ in range(2):  # a second pass when rounding carried into a new leading digit
+            q = d.quantize(Decimal(1).scaleb(d.adjusted() - digits + 1), rounding=ROUND_HALF_UP)
+            if q.adjusted() == d.adjusted():
+                break
+            d = q
+    if -7 <= q.adjusted() <= 20:
+        return f"{q:f}"
+    return str(q)
 
 
 @dataclass(frozen=True, eq=False)

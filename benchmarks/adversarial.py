@@ -1,0 +1,357 @@
+"""Adversarial searches for the worst case of every error bound pendulab states.
+
+Each search looks for the input that uses the largest share of its bound on purpose:
+it starts where the error sources line up (zero crossings, where ``theta`` moves
+fastest; amplitudes near pi and near 0; times of millions of periods; values just below
+powers of ten and on rounding ties), then climbs: it perturbs the worst inputs found so
+far by a few ulps up to a relative 1e-3 and keeps a perturbation that raises the ratio
+of error to bound (random restarts plus local hill climbing). References are independent
+of the code under test: mpmath at 60 to 80 digits from the inputs' exact doubles,
+exact rationals (``fractions.Fraction``).
+
+Each ``*_search(budget, seed)`` returns a dict: ``claim`` (the bound in words), ``worst``
+(the largest ratio error/bound found, or the largest error in the claim's unit),
+``where`` (the input that reached it), ``evaluations``. ``benchmarks/accuracy_claims.py``
+runs them all and writes the table of ``docs/accuracy.md``; ``tests/test_bounds_adversarial.py``
+runs them with small budgets.
+
+Run one: ``.venv/bin/python benchmarks/adversarial.py [motion|t_hat|digits|dense] [budget]``.
+"""
+from __future__ import annotations
+
+import math
+import random
+import sys
+from decimal import Decimal
+from fractions import Fraction
+
+import mpmath
+import numpy as np
+
+G = 9.80665
+EPS = 2.0**-52
+
+
+# ---------------------------------------------------------------------------- helpers
+def nudge(x: float, rng: random.Random, lo: float = -math.inf, hi: float = math.inf) -> float:
+    """``x`` moved by a few ulps or by a relative 1e-12 .. 1e-3 (half the time each), kept in ``[lo, hi]``."""
+    if rng.random() < 0.5:
+        y = x
+        for _ in range(rng.randint(1, 8)):
+            y = math.nextafter(y, math.inf if rng.random() < 0.5 else -math.inf)
+    else:
+        y = x * (1 + rng.choice((-1, 1)) * 10 ** rng.uniform(-12, -3))
+    return min(max(y, lo), hi)
+
+
+def climb(evaluate, starts: list[tuple], perturb, steps: int, rng: random.Random):
+    """Hill climbing on ``evaluate(x) -> ratio`` from the best of ``starts``: returns ``(ratio, x, n)``.
+
+    The best few starts each get ``steps // 4`` perturbations; a perturbation is kept
+    when it raises the ratio (ties too, so that plateaus are crossed).
+    """
+    scored = sorted(((evaluate(x), x) for x in starts), key=lambda p: -p[0])
+    n = len(starts)
+    best = scored[0]
+    for ratio, x in scored[:4]:
+        for _ in range(max(1, steps // 4)):
+            y = perturb(x, rng)
+            r = evaluate(y)
+            n += 1
+            if r >= ratio:
+                ratio, x = r, y
+        if ratio > best[0]:
+            best = (ratio, x)
+    return best[0], best[1], n
+
+
+# ---------------------------------------------------------------------------- exact motion
+def motion_reference(length: float, alpha: float, g: float, t: float, dps: int = 60) -> tuple[float, float]:
+    """``theta, theta'`` from mpmath: ``sin(theta/2) = k sn(K - omega0 t | k^2)``, ``theta' = -2 k omega0 cn``.
+
+    Everything from the exact doubles: ``K`` by ``mpmath.ellipk`` of ``m = sin^2(alpha/2)``,
+    ``u`` reduced modulo ``4K`` before ``mpmath.ellipfun``. ``dps`` grows with
+    ``omega0 t`` so the reduction keeps 40 digits.
+    """
+    with mpmath.workdps(dps + int(math.log10(1 + abs(t) * math.sqrt(g / length)))):
+        a = mpmath.mpf(alpha)
+        k = mpmath.sin(a / 2)
+        m = k * k
+        w = mpmath.sqrt(mpmath.mpf(g) / mpmath.mpf(length))
+        big_k = mpmath.ellipk(m)
+        u = big_k - w * mpmath.mpf(t)
+        u -= 4 * big_k * mpmath.floor((u + 2 * big_k) / (4 * big_k))
+        sn, cn, dn = (mpmath.ellipfun(f, u, m=m) for f in ("sn", "cn", "dn"))
+        return float(2 * mpmath.atan2(k * sn, dn)), float(-2 * k * w * cn)
+
+
+def motion_ratio(x: tuple[float, float, float, float]) -> float:
+    """The larger of ``|theta error| / bound`` and ``|theta' error| / bound'`` at ``x = (l, g, alpha, t)``."""
+    from pendulab.motion import exact_motion, exact_motion_error_bound
+
+    length, g, alpha, t = x
+    ex = exact_motion(length, alpha, [t], g)
+    bt, bo = exact_motion_error_bound(length, alpha, [t], g)
+    theta, omega = motion_reference(length, alpha, g, t)
+    return max(abs(ex.theta[0] - theta) / bt[0], abs(ex.omega[0] - omega) / bo[0])
+
+
+def motion_starts(rng: random.Random, n: int) -> list[tuple[float, float, float, float]]:
+    """Where the error sources line up: amplitudes near pi and 0, times at zero crossings
+    (a quarter and three quarters of a period, where ``|d theta/du| = 2k`` is largest) and
+    turning points, after up to 10^7 periods, lengths and g over decades."""
+    from pendulab.period import agm_period
+
+    near_pi = [math.pi - 10.0**-e for e in range(1, 16)] + [math.nextafter(math.pi, 0)]
+    starts = [(7.456720155578, 30.186002204269425, 3.1409621881538863, 188157.06928849473)]  # a known hard case
+    for _ in range(n):
+        alpha = rng.choice([rng.choice(near_pi), rng.uniform(0, math.pi), 10 ** rng.uniform(-8, 0)])
+        alpha = min(alpha, math.nextafter(math.pi, 0))
+        length = 10 ** rng.uniform(-3, 3)
+        g = rng.choice([G, 10 ** rng.uniform(-1, 3)])
+        period = float(agm_period(length, alpha, g))
+        cycles = rng.choice([0, rng.randrange(1, 10), 10 ** rng.uniform(1, 7)])
+        phase = rng.choice([0.25, 0.75, 0.0, 0.5, rng.random()])
+        starts.append((length, g, alpha, (math.floor(cycles) + phase) * period))
+    return starts
+
+
+def motion_perturb(x, rng: random.Random):
+    length, g, alpha, t = x
+    i = rng.randrange(4)
+    if i == 0:
+        length = nudge(length, rng, 1e-300)
+    elif i == 1:
+        g = nudge(g, rng, 1e-300)
+    elif i == 2:
+        alpha = nudge(alpha, rng, 0.0, math.nextafter(math.pi, 0))
+    else:
+        t = nudge(t, rng)
+    return length, g, alpha, t
+
+
+def motion_search(budget: int = 400, seed: int = 1) -> dict:
+    rng = random.Random(seed)
+    ratio, where, n = climb(motion_ratio, motion_starts(rng, budget // 2), motion_perturb, budget // 2, rng)
+    return {"claim": "exact_motion within exact_motion_error_bound (theta and theta')",
+            "worst": ratio, "unit": "of the bound", "where": "l, g, alpha, t = " + ", ".join(map(repr, where)),
+            "evaluations": n}
+
+
+# ---------------------------------------------------------------------------- T^ (7 iterations)
+def correctly_rounded_periods(length: float, alphas: np.ndarray, g: float = G) -> np.ndarray:
+    """The double nearest to ``4 sqrt(l/g) K(m)``, ``1 - m = cos^2(alpha/2)``, by mpmath's
+    elliptic K (rounded once): independent of the AGM code.
+
+    ``m`` is held to 40 digits beyond ``1 - m`` (which is 2e-32 at the last double below
+    pi): at a fixed 40 digits ``1 - m`` would keep 9 digits there and ``K`` be 6e4 ulps off.
+    """
+    out = np.empty(len(alphas))
+    for i, a in enumerate(alphas):
+        gap = max(math.pi - float(a), 1e-17)
+        with mpmath.workdps(40 + int(-2 * math.log10(gap)) if gap < 1 else 40):
+            kp = mpmath.cos(mpmath.mpf(float(a)) / 2)
+            scale = 4 * mpmath.sqrt(mpmath.mpf(length) / mpmath.mpf(g))
+            out[i] = float(scale * mpmath.ellipk(1 - kp * kp))
+    return out
+
+
+def t_hat_ulps(length: float, alphas: np.ndarray, g: float = G) -> np.ndarray:
+    """``|T^ - T|`` in ulps of ``T``: ``T^`` the coursework's 7 iterations (array kernel and
+    scalar loop, the larger), ``T`` correctly rounded."""
+    from pendulab.period import agm_period
+
+    alphas = np.asarray(alphas, dtype=float)
+    ref = correctly_rounded_periods(length, alphas, g)
+    arr = np.asarray(agm_period(length, alphas, g, iterations=7))
+    one = np.array([agm_period(length, float(a), g, iterations=7) for a in alphas])
+    ulp = np.array([math.ulp(r) for r in ref])
+    return np.maximum(np.abs(arr - ref), np.abs(one - ref)) / ulp
+
+
+def t_hat_search(budget: int = 200_000, seed: int = 1) -> dict:
+    """The largest ``|T^ - T|`` in ulps of ``T`` for ``alpha <= fixed_iterations_limit()``.
+
+    A relative error counts most in ulps where the mantissa of ``T`` is near 2, so half of
+    the lengths put ``T`` just below a power of two (the other half: 1 m, 3.5 m and random).
+    Amplitudes: log-uniform in ``pi - alpha`` from the limit to 1 and uniform. Screening
+    with the compiled kernels (``agm_period`` of arrays: ``T^`` and the correctly rounded
+    period) over ``budget`` pendulums; the worst 20 and their neighbouring doubles
+    (``alpha`` within 64 ulps) are then measured against mpmath's elliptic K, scalar loop included.
+    """
+    from pendulab.period import agm_period, fixed_iterations_limit
+
+    rng = np.random.default_rng(seed)
+    limit = fixed_iterations_limit()
+    gap = math.pi - limit
+    n = budget
+    alphas = np.where(rng.random(n) < 0.75, math.pi - np.exp(rng.uniform(math.log(gap), 0.0, n)),
+                      rng.uniform(0, limit, n))
+    alphas = np.minimum(alphas, limit)
+    t1 = np.asarray(agm_period(1.0, alphas))
+    target = 2.0 ** rng.integers(-1, 5, n) * (1 - 10 ** rng.uniform(-12, -2, n))  # just below 2^e
+    lengths = np.where(np.arange(n) % 2 == 0, (target / t1) ** 2,
+                       rng.choice([1.0, 3.5, 2.0800838231], n) * np.where(rng.random(n) < 0.5, 1.0, 10 ** rng.uniform(-2, 2, n)))
+    t7 = np.asarray(agm_period(lengths, alphas, iterations=7))
+    tc = np.asarray(agm_period(lengths, alphas))
+    d = np.abs(t7 - tc) / np.array([math.ulp(x) for x in tc])
+    worst, where, count = 0.0, None, n
+    for i in np.argsort(-d)[:20]:
+        length, alpha = float(lengths[i]), float(alphas[i])
+        nbrs = [alpha] + [alpha + k * math.ulp(alpha) for k in (-64, -8, -3, -2, -1, 1, 2, 3, 8, 64)]
+        nbrs = np.array([a for a in nbrs if a <= limit])
+        ulps = t_hat_ulps(length, nbrs)
+        count += len(nbrs)
+        j = int(np.argmax(ulps))
+        if ulps[j] > worst:
+            worst, where = float(ulps[j]), (length, float(nbrs[j]))
+    return {"claim": "T^ (7 iterations) from the correctly rounded period, alpha <= fixed_iterations_limit()",
+            "worst": worst, "unit": "ulp", "where": f"l = {where[0]!r}, alpha = {where[1]!r}", "evaluations": count}
+
+
+def t_hat_near_pi() -> list[tuple[str, float]]:
+    """``|T^ - T|`` in ulps at ``l = 1`` and ``3.5`` beyond the limit: ``pi - 1e-13 .. pi - 1e-15``
+    and the last double below pi (mpmath references)."""
+    alphas = [math.pi - 1e-13, math.pi - 1e-14, math.pi - 1e-15, math.nextafter(math.pi, 0)]
+    rows = []
+    for length in (1.0, 3.5):
+        for a, u in zip(alphas, t_hat_ulps(length, np.array(alphas))):
+            rows.append((f"l = {length:g}, alpha = pi - {math.pi - a:.2g}", float(u)))
+    return rows
+
+
+# ---------------------------------------------------------------------------- significant digits
+def digits_rule(value: float, error: float, max_digits: int = 15) -> int:
+    """The rule on exact decimals, written independently: the largest ``n <= max_digits`` with
+    ``|error| <= 0.5 10^(k - n + 1)``, ``10^k <= |value| < 10^(k+1)``, by string and ``Decimal``
+    arithmetic on the exact value of each double."""
+    if value == 0 or not math.isfinite(error):
+        return 0
+    if error <= 0:
+        return max_digits
+    v = Fraction(abs(value))
+    k = len(str(int(v))) - 1 if v >= 1 else -len(str(int(1 / v)))  # a first guess ...
+    while Fraction(10) ** k > v:  # ... made exact
+        k -= 1
+    while Fraction(10) ** (k + 1) <= v:
+        k += 1
+    e = Fraction(error)
+    n = 0
+    while n < max_digits and e <= Fraction(1, 2) * Fraction(10) ** (k - n):
+        n += 1
+    return n
+
+
+def digit_probes(rng: random.Random, n: int) -> list[tuple[float, float]]:
+    """Values just below, at and above powers of ten (and 5 10^k), errors on and beside the
+    half-unit ties ``0.5 10^j`` (as doubles, then a few ulps either side), and random ones."""
+    probes = []
+    for _ in range(n):
+        p = rng.randrange(-12, 16)
+        base = rng.choice([10.0**p, 5 * 10.0**p, rng.uniform(1, 10) * 10.0**p])
+        value = base
+        for _ in range(rng.randint(0, 3)):
+            value = math.nextafter(value, rng.choice((0.0, math.inf)))
+        if rng.random() < 0.5:
+            value = -value
+        j = p - rng.randrange(0, 16)
+        error = rng.choice([0.5 * 10.0**j, 0.5 * 10.0 ** (j + 1), rng.uniform(0.05, 5) * 10.0**j])
+        for _ in range(rng.randint(0, 2)):
+            error = math.nextafter(error, rng.choice((0.0, math.inf)))
+        probes.append((value, error))
+    return probes
+
+
+def digits_search(budget: int = 5000, seed: int = 1) -> dict:
+    """``significant_digits`` against :func:`digits_rule` on :func:`digit_probes`; ``round_significant``
+    never in E-notation for a leading digit in ``10^-7 .. 10^20`` and equal, as a number,
+    to the exact value rounded half away from zero."""
+    from pendulab.uncertainty import round_significant, significant_digits
+
+    rng = random.Random(seed)
+    wrong, text_wrong, first = 0, 0, None
+    for value, error in digit_probes(rng, budget):
+        n = significant_digits(value, error)
+        if n != digits_rule(value, error):
+            wrong += 1
+            first = first or (value, error)
+        if n:
+            text = round_significant(value, n)
+            exact = Decimal(value)
+            ok = Decimal(text) - exact  # the rounding error of the text: within half a unit of digit n
+            k = exact.adjusted()
+            half = Decimal(5).scaleb(k - n)
+            if abs(ok) > half or ("E" in text and -7 <= Decimal(text).adjusted() <= 20):
+                text_wrong += 1
+                first = first or (value, n, text)
+    return {"claim": "significant_digits is the rule on exact decimals; round_significant rounds the exact value",
+            "worst": wrong + text_wrong, "unit": "wrong counts or texts", "where": repr(first) if first else "-",
+            "evaluations": budget}
+
+
+# ---------------------------------------------------------------------------- dense output
+def turning_time(z1: float, z2: float, c: float, forward: bool) -> mpmath.mpf:
+    """Time from the state ``(z1, z2)`` of ``theta'' = c sin(theta)`` to its next (``forward``) or
+    previous turning point, exactly (mpmath, 50 digits): the energy fixes the amplitude
+    ``a`` of the flow through that very point, ``sin(theta/2) = k sn(u)`` with
+    ``k = sin(a/2)``, and the time is ``(K - F(phi | k^2))/omega0``,
+    ``sin(phi) = +-sin(z1/2)/k`` (DLMF 22.19.2, 19.2.4)."""
+    with mpmath.workdps(50):
+        z1, z2, w2 = mpmath.mpf(z1), mpmath.mpf(z2), -mpmath.mpf(c)
+        cos_a = mpmath.cos(z1) - z2 * z2 / (2 * w2)  # energy: z2^2/2 - w2 cos(z1) = -w2 cos(a)
+        k = mpmath.sqrt((1 - cos_a) / 2)
+        m = k * k
+        s = 1 if (z2 > 0) == forward else -1
+        phi = mpmath.asin(min(mpmath.mpf(1), s * mpmath.sin(z1 / 2) / k))
+        return (mpmath.ellipk(m) - mpmath.ellipf(phi, m)) / mpmath.sqrt(w2)
+
+
+def dense_search(budget: int = 40, seed: int = 1) -> dict:
+    """The truncation of the series of :mod:`pendulab.dense` (degree :data:`~pendulab.dense.DEGREE`):
+    :func:`~pendulab.dense.dense_crossing` against the exact flow through the same bracket
+    point (:func:`turning_time`), as ``omega0`` times the time error, over ``omega0 h`` up to 1,
+    amplitudes from 0.1 to ``pi - 1e-8`` and where in the step the crossing falls (a point
+    just before it, or half a step either side, the farthest the series is used)."""
+    from pendulab.dense import dense_crossing
+
+    rng = random.Random(seed)
+    worst, where = 0.0, None
+    for i in range(budget):
+        alpha = rng.choice([rng.uniform(0.1, 3.0), math.pi - 10 ** rng.uniform(-8, -1)])
+        wh = 1.0 if i % 3 == 0 else rng.uniform(0.1, 1.0)
+        frac = rng.choice([0.5, math.nextafter(0.5, 0), rng.random()])
+        w = math.sqrt(G)  # l = 1
+        h = wh / w
+        z1a, z2a = motion_reference(1.0, alpha, G, 0.5 * float(agm_half(alpha)) - frac * h)
+        z1b, z2b = motion_reference(1.0, alpha, G, 0.5 * float(agm_half(alpha)) + (1 - frac) * h)
+        got = dense_crossing((z1a, z1b), (z2a, z2b), -G, h, 0.0)
+        lin = z2a / (z2a - z2b)
+        ref = turning_time(z1a, z2a, -G, True) if lin <= 0.5 else h - turning_time(z1b, z2b, -G, False)
+        err = abs(got - float(ref)) * w
+        if err > worst:
+            worst, where = err, (alpha, wh, frac)
+    return {"claim": "dense output: crossing from the series through the nearer bracket point, omega0 h <= 1",
+            "worst": worst, "unit": "rad (omega0 x time error)",
+            "where": "alpha, omega0 h, fraction of the step = " + repr(where), "evaluations": budget}
+
+
+def agm_half(alpha: float) -> float:
+    """The period of ``l = 1`` (mpmath's elliptic K, 40 digits)."""
+    with mpmath.workdps(40):
+        kp = mpmath.cos(mpmath.mpf(alpha) / 2)
+        return 4 * mpmath.sqrt(1 / mpmath.mpf(G)) * mpmath.ellipk(1 - kp * kp)
+
+
+SEARCHES = {"motion": motion_search, "t_hat": t_hat_search, "digits": digits_search, "dense": dense_search}
+
+
+def main() -> None:
+    names = sys.argv[1:2] or list(SEARCHES)
+    budget = int(sys.argv[2]) if len(sys.argv) > 2 else None
+    for name in names:
+        result = SEARCHES[name](budget) if budget else SEARCHES[name]()
+        print(f"{name}: {result}")
+
+
+if __name__ == "__main__":
+    main()
