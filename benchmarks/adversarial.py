@@ -33,14 +33,14 @@ EPS = 2.0**-52
 
 
 # ---------------------------------------------------------------------------- helpers
-def nudge(x: float, rng: random.Random, lo: float = -math.inf, hi: float = math.inf) -> float:
-    """``x`` moved by a few ulps or by a relative 1e-12 .. 1e-3 (half the time each), kept in ``[lo, hi]``."""
+def nudge(x: float, rng: random.Random, lo: float = -math.inf, hi: float = math.inf, widest: float = -3) -> float:
+    """``x`` moved by a few ulps or by a relative 1e-12 .. ``10^widest`` (half the time each), kept in ``[lo, hi]``."""
     if rng.random() < 0.5:
         y = x
         for _ in range(rng.randint(1, 8)):
             y = math.nextafter(y, math.inf if rng.random() < 0.5 else -math.inf)
     else:
-        y = x * (1 + rng.choice((-1, 1)) * 10 ** rng.uniform(-12, -3))
+        y = x * (1 + rng.choice((-1, 1)) * 10 ** rng.uniform(-12, widest))
     return min(max(y, lo), hi)
 
 
@@ -99,7 +99,7 @@ def motion_ratio(x: tuple[float, float, float, float]) -> float:
 def motion_starts(rng: random.Random, n: int) -> list[tuple[float, float, float, float]]:
     """Where the error sources line up: amplitudes near pi and 0, times at zero crossings
     (a quarter and three quarters of a period, where ``|d theta/du| = 2k`` is largest) and
-    turning points, after up to 10^7 periods, lengths and g over decades."""
+    turning points, after up to 10^10 periods, lengths and g over decades."""
     from pendulab.period import agm_period
 
     near_pi = [math.pi - 10.0**-e for e in range(1, 16)] + [math.nextafter(math.pi, 0)]
@@ -110,7 +110,7 @@ def motion_starts(rng: random.Random, n: int) -> list[tuple[float, float, float,
         length = 10 ** rng.uniform(-3, 3)
         g = rng.choice([G, 10 ** rng.uniform(-1, 3)])
         period = float(agm_period(length, alpha, g))
-        cycles = rng.choice([0, rng.randrange(1, 10), 10 ** rng.uniform(1, 7)])
+        cycles = rng.choice([0, rng.randrange(1, 10), 10 ** rng.uniform(1, 10)])
         phase = rng.choice([0.25, 0.75, 0.0, 0.5, rng.random()])
         starts.append((length, g, alpha, (math.floor(cycles) + phase) * period))
     return starts
@@ -216,7 +216,8 @@ def t_hat_near_pi() -> list[tuple[str, float]]:
     rows = []
     for length in (1.0, 3.5):
         for a, u in zip(alphas, t_hat_ulps(length, np.array(alphas))):
-            rows.append((f"l = {length:g}, alpha = pi - {math.pi - a:.2g}", float(u)))
+            where = "the last double below pi" if a == alphas[-1] else f"pi - {math.pi - a:.2g}"
+            rows.append((f"l = {length:g}, alpha = {where}", float(u)))
     return rows
 
 
@@ -306,33 +307,38 @@ def turning_time(z1: float, z2: float, c: float, forward: bool) -> mpmath.mpf:
         return (mpmath.ellipk(m) - mpmath.ellipf(phi, m)) / mpmath.sqrt(w2)
 
 
-def dense_search(budget: int = 40, seed: int = 1) -> dict:
+def dense_search(budget: int = 40, seed: int = 1, max_step: float = 1.0) -> dict:
     """The truncation of the series of :mod:`pendulab.dense` (degree :data:`~pendulab.dense.DEGREE`):
     :func:`~pendulab.dense.dense_crossing` against the exact flow through the same bracket
     point (:func:`turning_time`), as ``omega0`` times the time error, over ``omega0 h`` up to 1,
     amplitudes from 0.1 to ``pi - 1e-8`` and where in the step the crossing falls (a point
-    just before it, or half a step either side, the farthest the series is used)."""
+    just before it, or half a step either side, the farthest the series is used).
+    ``max_step``: the largest ``omega0 h`` tried (a third of the tries take it)."""
     from pendulab.dense import dense_crossing
 
-    rng = random.Random(seed)
-    worst, where = 0.0, None
-    for i in range(budget):
-        alpha = rng.choice([rng.uniform(0.1, 3.0), math.pi - 10 ** rng.uniform(-8, -1)])
-        wh = 1.0 if i % 3 == 0 else rng.uniform(0.1, 1.0)
-        frac = rng.choice([0.5, math.nextafter(0.5, 0), rng.random()])
+    def error(x) -> float:
+        alpha, wh, frac = x
         w = math.sqrt(G)  # l = 1
         h = wh / w
-        z1a, z2a = motion_reference(1.0, alpha, G, 0.5 * float(agm_half(alpha)) - frac * h)
-        z1b, z2b = motion_reference(1.0, alpha, G, 0.5 * float(agm_half(alpha)) + (1 - frac) * h)
+        half = 0.5 * float(agm_half(alpha))
+        z1a, z2a = motion_reference(1.0, alpha, G, half - frac * h)
+        z1b, z2b = motion_reference(1.0, alpha, G, half + (1 - frac) * h)
         got = dense_crossing((z1a, z1b), (z2a, z2b), -G, h, 0.0)
         lin = z2a / (z2a - z2b)
         ref = turning_time(z1a, z2a, -G, True) if lin <= 0.5 else h - turning_time(z1b, z2b, -G, False)
-        err = abs(got - float(ref)) * w
-        if err > worst:
-            worst, where = err, (alpha, wh, frac)
-    return {"claim": "dense output: crossing from the series through the nearer bracket point, omega0 h <= 1",
+        return abs(got - float(ref)) * w
+
+    rng = random.Random(seed)
+    starts = []
+    for i in range(max(1, budget // 2)):
+        alpha = rng.choice([rng.uniform(0.1, 3.0), math.pi - 10 ** rng.uniform(-8, -1)])
+        wh = max_step if i % 3 == 0 else rng.uniform(0.1, max_step)
+        starts.append((alpha, wh, rng.choice([0.5, math.nextafter(0.5, 0), rng.random()])))
+    hi = math.nextafter(math.pi, 0)
+    worst, where, n = climb(error, starts, lambda x, r: (nudge(x[0], r, 0.01, hi, widest=-0.7), max_step, 0.5), budget // 2, rng)
+    return {"claim": f"dense output: crossing from the series through the nearer bracket point, omega0 h <= {max_step:g}",
             "worst": worst, "unit": "rad (omega0 x time error)",
-            "where": "alpha, omega0 h, fraction of the step = " + repr(where), "evaluations": budget}
+            "where": "alpha, omega0 h, fraction of the step = " + repr(where), "evaluations": n}
 
 
 def agm_half(alpha: float) -> float:
@@ -342,7 +348,114 @@ def agm_half(alpha: float) -> float:
         return 4 * mpmath.sqrt(1 / mpmath.mpf(G)) * mpmath.ellipk(1 - kp * kp)
 
 
-SEARCHES = {"motion": motion_search, "t_hat": t_hat_search, "digits": digits_search, "dense": dense_search}
+# ---------------------------------------------------------------------------- graded quadrature
+def quadrature_error(alpha: float, n: int = 3000) -> float:
+    """Relative error of ``quadrature_period(1, alpha, n, substitution=True, graded=True)``
+    against the correctly rounded period (mpmath's elliptic K)."""
+    from pendulab.quadrature import quadrature_period
+
+    ref = correctly_rounded_periods(1.0, np.array([alpha]))[0]
+    return abs(quadrature_period(1.0, alpha, n, substitution=True, graded=True) / ref - 1)
+
+
+def quadrature_search(budget: int = 300, seed: int = 1) -> dict:
+    """The largest relative error of the graded substituted rule with ``n = 3000`` panels:
+    amplitudes log-uniform in ``pi - alpha`` from the last double below pi to 1, the 8
+    doubles below pi, uniform ones, then climbing over ``alpha``."""
+    rng = random.Random(seed)
+    below = [math.pi]
+    for _ in range(8):
+        below.append(math.nextafter(below[-1], 0))
+    starts = [(a,) for a in below[1:]]
+    starts += [(math.pi - 10 ** rng.uniform(-15.5, 0),) for _ in range(budget // 3)]
+    starts += [(rng.uniform(1e-3, math.pi - 1e-3),) for _ in range(budget // 6)]
+    hi = math.nextafter(math.pi, 0)
+    ratio, where, n = climb(lambda x: quadrature_error(x[0]), starts,
+                            lambda x, r: (nudge(x[0], r, 0.0, hi),), budget // 2, rng)
+    return {"claim": "graded substituted rule (11), n = 3000: relative error at every amplitude",
+            "worst": ratio, "unit": "relative", "where": f"alpha = {where[0]!r}", "evaluations": n}
+
+
+# ---------------------------------------------------------------------------- correctly rounded AGM
+def agm_search(budget: int = 2000, seed: int = 1) -> dict:
+    """The double-double kernel's relative error against :data:`pendulab._agm.ERROR_BOUND`, and
+    how many periods ``agm_period`` misrounds: amplitudes within 1e-16 .. 1 of pi, the 8
+    doubles below pi, tiny ones (1e-300 .. 1e-8) and uniform ones; lengths putting ``T``
+    just below a power of two, and random. Reference: mpmath's elliptic K rounded once."""
+    from pendulab._agm import ERROR_BOUND, agm_periods_dd
+    from pendulab.period import agm_period
+
+    rng = np.random.default_rng(seed)
+    below = [math.pi]
+    for _ in range(8):
+        below.append(math.nextafter(below[-1], 0))
+    n = max(budget, 16)
+    kind = rng.integers(0, 3, n)
+    alphas = np.where(kind == 0, math.pi - 10 ** rng.uniform(-16, 0, n),
+                      np.where(kind == 1, 10 ** rng.uniform(-300, -8, n), rng.uniform(0, math.pi, n)))
+    alphas[:8] = below[1:]
+    alphas = np.minimum(alphas, below[1])
+    t1 = np.asarray(agm_period(1.0, alphas))
+    lengths = np.where(np.arange(n) % 2 == 0, (2.0 ** rng.integers(-1, 5, n) * (1 - 10 ** rng.uniform(-15, -2, n)) / t1) ** 2,
+                       10 ** rng.uniform(-2, 2, n))
+    got = np.asarray(agm_period(lengths, alphas))
+    hi, lo, hard = np.empty(n), np.empty(n), np.empty(n, np.int64)
+    agm_periods_dd(alphas, lengths, G, hi, lo, hard)
+    worst, where, wrong = 0.0, None, 0
+    for a, length, x, h, e in zip(alphas, lengths, got, hi, lo):
+        gap = max(math.pi - float(a), 1e-17)
+        with mpmath.workdps(40 + int(-2 * math.log10(gap)) if gap < 1 else 40):
+            kp = mpmath.cos(mpmath.mpf(float(a)) / 2)
+            ref = 4 * mpmath.sqrt(mpmath.mpf(float(length)) / mpmath.mpf(G)) * mpmath.ellipk(1 - kp * kp)
+            wrong += x != float(ref)
+            err = float(abs((mpmath.mpf(float(h)) + mpmath.mpf(float(e))) / ref - 1)) / ERROR_BOUND
+        if err > worst:
+            worst, where = err, (float(length), float(a))
+    return {"claim": "agm_period: double-double within ERROR_BOUND (then rounded, mpmath where the test fails)",
+            "worst": worst, "unit": "of ERROR_BOUND", "wrong": int(wrong),
+            "where": f"l = {where[0]!r}, alpha = {where[1]!r}", "evaluations": n}
+
+
+# ---------------------------------------------------------------------------- the sweep's sine and cosine
+def sincos_search(budget: int = 20_000, seed: int = 1) -> dict:
+    """``pendulab.sweep.kernel.sincos`` against mpmath (correctly rounded sin and cos of the
+    exact double), in ulps of the result: ``x`` next to the multiples of ``pi/4`` in
+    ``|x| < 4`` (zeros of sin and cos, where the reduction cancels; the quadrant boundaries,
+    where ``q`` rounds at a tie), within a few ulps and within 1e-12 .. 1e-3, and uniform."""
+    from mpmath.libmp import to_float
+
+    from pendulab.sweep.kernel import sincos
+
+    rng = random.Random(seed)
+    worst, where = 0.0, None
+    with mpmath.workprec(200):
+        for i in range(budget):
+            j = rng.randrange(-5, 6)
+            if i % 3 == 2:
+                x = rng.uniform(-4, 4)
+            else:
+                x = float(j * mpmath.pi / 4)
+                if i % 3 == 0:
+                    for _ in range(rng.randint(0, 6)):
+                        x = math.nextafter(x, rng.choice((-math.inf, math.inf)))
+                else:
+                    x += rng.choice((-1, 1)) * 10 ** rng.uniform(-12, -3)
+            if not abs(x) < 4:
+                continue
+            s, c = sincos(x)
+            for got, ref in ((s, mpmath.sin(mpmath.mpf(x))), (c, mpmath.cos(mpmath.mpf(x)))):
+                nearest = to_float(ref._mpf_, rnd="n")
+                if nearest == 0:
+                    continue
+                err = float(abs(mpmath.mpf(got) - ref)) / math.ulp(nearest)
+                if err > worst:
+                    worst, where = err, x
+    return {"claim": "sweep kernel sin, cos within 1 ulp for |x| < 4", "worst": worst, "unit": "ulp",
+            "where": f"x = {where!r}", "evaluations": budget}
+
+
+SEARCHES = {"motion": motion_search, "t_hat": t_hat_search, "digits": digits_search, "dense": dense_search,
+            "quadrature": quadrature_search, "agm": agm_search, "sincos": sincos_search}
 
 
 def main() -> None:

@@ -6,7 +6,7 @@ import sys
 import pytest
 
 from conftest import assert_one_line_error, reference_period
-from pendulab.period import agm_period
+from pendulab.period import FIXED_ITERATIONS_ULPS, agm_period
 from pendulab.problems import problem1, problem2
 
 
@@ -83,7 +83,7 @@ def test_quadrature_near_pi_says_t_hat_is_off_and_measures_the_substitution_agai
     data = cli(*args, "--json").json
     assert data["period"] == ref
     ulps = (data["t_hat"] - ref) / math.ulp(ref)
-    assert abs(ulps) > 4 and data["t_hat_ulps"] == round(ulps)
+    assert abs(ulps) > FIXED_ITERATIONS_ULPS and data["t_hat_ulps"] == round(ulps)
     assert data["t_hat_note"] and f"{data['t_hat_ulps']:+d} ulp" in data["t_hat_note"]
     assert data["substitution_reference"] == "period"
     for row in data["rows"]:
@@ -98,7 +98,7 @@ def test_quadrature_near_pi_says_t_hat_is_off_and_measures_the_substitution_agai
 def test_quadrature_at_4pi_5_has_no_note(cli):
     # 4pi/5: T^ (8) is within the loop's rounding of the period; both columns against T^.
     data = cli("quadrature", "--n", "10,100", "--substitution", "--json").json
-    assert data["t_hat_note"] is None and abs(data["t_hat_ulps"]) <= 4
+    assert data["t_hat_note"] is None and abs(data["t_hat_ulps"]) <= FIXED_ITERATIONS_ULPS
     assert data["substitution_reference"] == "t_hat"
     assert all(r["substitution_error"] == abs(r["substitution_estimate"] - data["t_hat"]) for r in data["rows"])
     lines = cli("quadrature", "--n", "10,100", "--substitution").out.splitlines()

@@ -123,7 +123,7 @@ def _phase(t: np.ndarray, length: float, alpha: float, g: float) -> tuple[np.nda
         ql = ql + t * rl
         n = np.floor(qh)
         fh, fl = _two_sum(qh, -n)  # q - n exactly, then the low parts
-        fl = fl + ql
+        fh, fl = _two_sum(fh, fl + ql)  # renormalised: fh has lost the integer's bits
     far = ~(np.abs(qh) < 2.0**60) | ~np.isfinite(fl)
     for i in np.flatnonzero(far):
         q = Fraction(float(t[i])) * exact
@@ -133,7 +133,8 @@ def _phase(t: np.ndarray, length: float, alpha: float, g: float) -> tuple[np.nda
     # v = 1 - 4f in [-3, 1]; add 4 where v < -2 (f > 3/4): |u| <= 2K, the shorter argument.
     shift = np.where(fh + fl > 0.75, 5.0, 1.0)
     vh, e = _two_sum(shift, -4.0 * fh)
-    return vh.reshape(shape), (e - 4.0 * fl).reshape(shape)
+    vh, vl = _two_sum(vh, e - 4.0 * fl)
+    return vh.reshape(shape), vl.reshape(shape)
 
 
 def jacobi_agm(u: np.ndarray, k: float, kp: float,
@@ -165,7 +166,7 @@ def jacobi_agm(u: np.ndarray, k: float, kp: float,
     else:
         vh, vl = phase  # pi v: pi as a double-double, TwoProduct
         p, e = _two_prod(_PI_HI, vh)
-        ph, pl = 2.0 ** (n - 1) * p, 2.0 ** (n - 1) * (e + (_PI_HI * vl + _PI_LO * vh))
+        ph, pl = _two_sum(2.0 ** (n - 1) * p, 2.0 ** (n - 1) * (e + (_PI_HI * vl + _PI_LO * vh)))
     for i in range(n, 0, -1):
         # arcsin(x), x = c_i/a_i sin(phi), as atan2(x, sqrt(1 - x^2)) with
         # 1 - |x| = (b_{i-1} + c_i cos^2(phi)/(1 + |sin(phi)|))/a_i (a_i - c_i = b_{i-1}):
@@ -174,7 +175,7 @@ def jacobi_agm(u: np.ndarray, k: float, kp: float,
         x = c[i] / a[i] * s
         one_minus = (b[i - 1] + c[i] * co * co / (1 + np.abs(s))) / a[i]
         hi, lo = _two_sum(ph, np.arctan2(x, np.sqrt(one_minus * (1 + np.abs(x)))))
-        ph, pl = 0.5 * hi, 0.5 * (lo + pl)  # halving is exact
+        ph, pl = _two_sum(0.5 * hi, 0.5 * (lo + pl))  # halving is exact
     sn, cn = _sin_cos(ph, pl)
     return sn, cn, np.hypot(kp, k * cn)
 
@@ -284,7 +285,7 @@ def exact_motion_error_bound(length: Any, amplitude: Any, t: Any, g: Any = G) ->
     ``k' = cos(alpha/2)``, of ``theta = 2 atan2(k sn, dn)`` and, for ``theta'``, of
     ``omega0 = sqrt(g/l)`` and the product ``2 k omega0 cn``. An adversarial search
     (``benchmarks/adversarial.py``, ``motion_search``: zero crossings and turning points
-    after up to 10^7 periods, amplitudes near 0 and within 1e-15 of pi, lengths and ``g``
+    after up to 10^10 periods, amplitudes near 0 and within 1e-15 of pi, lengths and ``g``
     over decades, then hill climbing on the ratio of error to bound) against
     ``mpmath.ellipfun`` at 60 digits finds at most the share of this bound that
     ``docs/accuracy.md`` prints; ``tests/test_bounds_adversarial.py`` runs it small.
