@@ -186,7 +186,7 @@ def claims(quick: bool = False) -> list[dict]:
                  "bound_text": "the rule on the exact decimal value of each double", "kind": "exact (rationals)",
                  "bound": 0.0, "worst": float(r["worst"]), "worst_text": f"{r['worst']} wrong", "where": r["where"],
                  "evaluations": r["evaluations"]})
-    for step, bound, text in ((0.5, EPS, "`2^-52` (`omega0` times the time error)"),
+    for step, bound, text in ((0.4, EPS, "`2^-52` (`omega0` times the time error)"),
                               (1.0, 1e-10, "`1e-10` (`omega0` times the time error)")):
         r = adversarial.dense_search(b["dense"], max_step=step)
         rows.append({"claim": f"dense output, `omega0 h <= {step:g}` (`pendulab.dense.DEGREE`)", "bound_text": text,

@@ -329,8 +329,9 @@ def dense_search(budget: int = 40, seed: int = 1, max_step: float = 1.0) -> dict
         return abs(got - float(ref)) * w
 
     rng = random.Random(seed)
-    starts = []
-    for i in range(max(1, budget // 2)):
+    # the series is used farthest from its point (frac = 1/2) at the largest step: a grid of amplitudes there
+    starts = [(float(a), max_step, 0.5) for a in np.linspace(0.1, 3.1, max(2, budget // 4))]
+    for i in range(max(1, budget // 4)):
         alpha = rng.choice([rng.uniform(0.1, 3.0), math.pi - 10 ** rng.uniform(-8, -1)])
         wh = max_step if i % 3 == 0 else rng.uniform(0.1, max_step)
         starts.append((alpha, wh, rng.choice([0.5, math.nextafter(0.5, 0), rng.random()])))

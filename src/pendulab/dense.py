@@ -32,7 +32,7 @@ import math
 #: with ``R`` (2 to 3) the distance from the real axis to the motion's complex
 #: singularities in ``omega0 t``, not like ``1/17!``. Measured (``benchmarks/adversarial.py``,
 #: ``dense_search``, against the exact flow through the same point): the crossing is
-#: within ``2^-52/omega0`` for ``omega0 h <= 1/2`` and within ``1e-10/omega0`` for
+#: within ``2^-52/omega0`` for ``omega0 h <= 0.4`` and within ``1e-10/omega0`` for
 #: ``omega0 h <= 1`` (``docs/accuracy.md`` prints the worst cases found).
 DEGREE = 16
 _MAX_NEWTON = 60
