@@ -280,3 +280,84 @@ def test_the_streamed_pass_stops_between_chunks():
     for key, value in whole.items():
         assert np.array_equal(value, parts[key]) if isinstance(value, np.ndarray) else value == parts[key] or (
             isinstance(value, float) and math.isnan(value) and math.isnan(parts[key])), key
+
+
+# ------------------------------------------------------------------ numpy warnings
+
+@pytest.mark.filterwarnings("error::RuntimeWarning")
+@pytest.mark.parametrize("query", [
+    {"length": "1", "amplitude": "3", "step": "1", "t_max": "2000"},  # blows up: inf, then NaN
+    {"length": "1e-300", "amplitude": "1", "step": "1e-3", "t_max": "20", "g": "1e300"},  # sqrt(g/l) t overflows
+    {"length": "1", "amplitude": "3", "step": "1.9", "t_max": "2000", "method": "taylor:30"},
+    {"length": "1e300", "amplitude": "1", "step": "1e-3", "t_max": "20"},
+    {"length": "1", "amplitude": "3.14159265358979", "step": "0.1", "t_max": "20"},
+])
+def test_no_runtime_warning_reaches_the_log(client, query):
+    # A warning is an error here: the request would answer 500.
+    r = client.get("/api/simulate", params=query)
+    assert r.status_code == 200
+    assert client.get("/api/convergence", params=query | {"steps": "1,0.5,0.1"}).status_code in (200, 422)
+
+
+# ------------------------------------------------------------------ answers bounded in bytes
+
+def list_bounds(points: int) -> dict[str, int]:
+    """The longest each list of an /api/simulate answer can be (from how each is drawn)."""
+    nb = points // 2
+    phase = sampling.PHASE_POINTS + 1 + sampling.PHASE_POINTS // 2  # samples, and a null between whole orbits
+    return {"t": 2 * nb, "theta": 2 * nb, "omega": 2 * nb, "energy.t": 2 * nb, "energy.drift": 2 * nb,
+            "exact.t": 3 * nb + 1, "exact.theta": 3 * nb + 1, "error.t": 2 * nb, "error.theta": 2 * nb,
+            "phase.theta": phase, "phase.omega": phase,
+            "frames.t": sampling.FRAME_POINTS + 1, "frames.theta": sampling.FRAME_POINTS + 1,
+            "frames.omega": sampling.FRAME_POINTS + 1}
+
+
+def test_the_stated_byte_bound_follows_from_the_list_bounds():
+    # 24 characters: the longest shortest-repr of a double (-2.2250738585072014e-308), and a comma;
+    # 16 kB for the keys, the scalars and the warnings.
+    assert sum(list_bounds(limits.MAX_POINTS).values()) * 25 + 16_000 <= limits.MAX_ANSWER_BYTES
+
+
+# The worst cases: most points; many periods per column (every column has turns); a run
+# blown up early (nulls), long floats (g, length with 17 digits), every method's drift.
+WORST = [
+    {"length": "0.0123456789012345", "amplitude": "2.9876543210987654", "step": "1.234567890123e-3", "t_max": "1234.56789"},
+    {"length": "1.00000000000001", "amplitude": "pi/3", "step": "2e-4", "t_max": "2000", "g": "9.87654321098765"},
+    {"length": "1e-3", "amplitude": "3.1", "step": "1e-3", "t_max": "3900", "method": "taylor:1"},
+    {"length": "1", "amplitude": "3", "step": "1", "t_max": "2000000"},
+    {"length": "2e-2", "amplitude": "1", "step": "3.3e-4", "t_max": "1800", "method": "rk4"},
+]
+
+
+@pytest.mark.parametrize("query", WORST)
+def test_simulate_answers_stay_within_the_byte_bound(client, query):
+    r = client.get("/api/simulate", params=query | {"points": str(limits.MAX_POINTS)})
+    assert r.status_code == 200, r.text[:300]
+    assert len(r.content) <= limits.MAX_ANSWER_BYTES
+    body = r.json()
+    for key, most in list_bounds(limits.MAX_POINTS).items():
+        node = body
+        for part in key.split("."):
+            node = node[part]
+        assert len(node) <= most, key
+    # A query past the points limit is refused, so no answer grows beyond the bound.
+    r = client.get("/api/simulate", params=query | {"points": str(limits.MAX_POINTS + 1)})
+    assert r.status_code == 422 and r.json()["error"]["field"] == "points"
+
+
+def test_a_client_that_stops_reading_is_dropped():
+    # A 10^6-row CSV (about 40 MB) asked for and never read: after the write-stall timeout the
+    # server drops the connection, and what it had buffered for it.
+    q = "length=1&amplitude=1&step=1e-5&t_max=10"
+    with uvicorn_in_thread(stall_timeout=1.0) as port:
+        s = socket.create_connection(("127.0.0.1", port), timeout=10)
+        s.sendall(f"GET /api/trajectory.csv?{q} HTTP/1.1\r\nHost: localhost\r\n\r\n".encode())
+        time.sleep(4.0)
+        got = 0
+        with contextlib.suppress(ConnectionResetError):
+            while chunk := s.recv(1 << 16):
+                got += len(chunk)
+        s.close()
+        assert 0 < got < 10_000_000
+        # The server is still there.
+        assert httpx.get(f"http://127.0.0.1:{port}/api/config", timeout=10).status_code == 200

@@ -18,6 +18,10 @@ from ..methods import Kernel, Method
 MAX_WORK = 10_000_000
 #: At most this many points in an ``/api/simulate`` answer (its size: :data:`MAX_ANSWER_BYTES`).
 MAX_POINTS = 20_000
+#: An ``/api/simulate`` answer is at most this many bytes: about 10 numbers per point (theta,
+#: omega, t, the energy, the exact curve's column ends and turns, the error) plus the phase
+#: portrait's and animation's fixed counts, each number at most 24 characters and a comma.
+MAX_ANSWER_BYTES = 7_000_000
 #: At most this many rows in a CSV (streamed block by block: the server holds one block).
 MAX_CSV_ROWS = 1_000_000
 #: Points returned for plotting when the request does not say.

@@ -140,7 +140,8 @@ def simulate_view(params: Mapping[str, str], stop: threading.Event | None = None
     h, n, nb = p["step"], sim["n"], sim["columns"]
     f_idx, e_idx = sim["frame_idx"], sim["error_idx"]
     f_t, e_t = h * f_idx, h * e_idx
-    with np.errstate(invalid="ignore", over="ignore"):  # a blown-up simulation: inf - x, shown as null
+    # A blown-up simulation (inf - inf), or a phase sqrt(g/l) t beyond the doubles: NaN, shown as null.
+    with np.errstate(invalid="ignore", over="ignore"):
         err = sim["error_theta"] - exact_motion(p["length"], p["amplitude"], e_t, p["g"]).theta
     keep = sampling.minmax((e_idx * nb) // (n + 1), err, nb)
     ex_t, ex_th = sampling.exact_overlay(p["length"], p["amplitude"], p["g"], sim["period"], n * h, nb)
