@@ -9,6 +9,8 @@ from __future__ import annotations
 import csv
 import io
 import json
+import math
+from decimal import Decimal
 
 import pypdf
 import pytest
@@ -18,7 +20,7 @@ from hypothesis import strategies as st
 import plain_pendulum as plain
 from pendulab.cli import main
 from pendulab.errors import InputError
-from pendulab.key import answer_key, parse_groups
+from pendulab.key import answer_key, parse_entries, parse_groups, tolerance
 
 GROUPS = [(262, 407, 634), (99999, 1), (81234, 90876), (11111,), (98765, 43210, 55555)]
 
@@ -36,33 +38,50 @@ def test_group_answers_match_plain_python(key, i):
     assert g["length_text"] == plain.length_text(students)
     length = float(g["length_text"])
     exact = plain.agm7_period(length)
-    assert g["t_hat"] == pytest.approx(exact, rel=1e-15)
+    assert g["t_hat"] == pytest.approx(exact, rel=tolerance("3(b) T^ (8), 7 iterations").value)
+    digits = str(sum(students)).replace("0", "")
+    assert g["sum"] == sum(students) and g["digits"] == digits
     # 3(b): what the h = 0.2 simulation does first, searched over four exact periods.
     event = plain.first_event(length, 0.2, 4 * exact)
     assert g["plot"]["outcome"] == event[0]
     if event[0] == "returns":
-        assert g["plot"]["j"] == event[1]
-        assert g["plot"]["bracket"] == pytest.approx([event[1] * 0.2, (event[1] + 1) * 0.2], abs=1e-12)
+        j = event[1]
+        assert g["plot"]["j"] == j
+        assert g["plot"]["bracket"] == [float(Decimal(j) * Decimal("0.2")), float(Decimal(j + 1) * Decimal("0.2"))]
+        assert g["plot"]["t_hat_inside"] == (j * 0.2 <= exact <= (j + 1) * 0.2)
         assert g["plot"]["left_at"] is None
     else:
         assert g["plot"]["left_at"] == pytest.approx(event[1], abs=1e-12)
-        assert g["plot"]["bracket"] is None
+        assert g["plot"]["bracket"] is None and g["plot"]["t_hat_inside"] is None
     # 3(c)-(d): each step's bracket and estimates.
     assert [e["step"] for e in g["estimates"]] == [1e-2, 1e-3, 1e-4]
+    # The plain program reaches the key's marking tolerances: a correct program can.
+    t_abs = tolerance("3(c) T linear, T = p(0) and their errors").value
+    errors = []
     for e in g["estimates"]:
         ref = plain.estimate(length, e["step"])
         assert e["j"] == ref["j"]
+        assert e["bracket"] == [float(Decimal(ref["j"] + k) * Decimal(repr(e["step"]))) for k in (0, 1)]
         assert e["bracket"] == pytest.approx(list(ref["bracket"]), abs=1e-12)
-        assert e["linear"] == pytest.approx(ref["linear"], rel=1e-12)
-        assert e["cubic"] == pytest.approx(ref["cubic"], rel=1e-12)
-        assert e["cubic_error"] == pytest.approx(abs(ref["cubic"] - exact), rel=1e-6, abs=1e-15)
-        # The estimate is a difference of nearly equal numbers: compare at its own scale.
-        assert e["cubic_error_estimate"] == pytest.approx(ref["error_estimate"], rel=1e-6, abs=1e-13)
+        assert e["linear"] == pytest.approx(ref["linear"], abs=t_abs)
+        assert e["cubic"] == pytest.approx(ref["cubic"], abs=t_abs)
+        assert e["linear_error"] == pytest.approx(abs(ref["linear"] - exact), abs=t_abs)
+        assert e["cubic_error"] == pytest.approx(abs(ref["cubic"] - exact), abs=t_abs)
+        assert e["cubic_error_estimate"] == pytest.approx(ref["error_estimate"],
+                                                          abs=tolerance("3(d) error estimate").value)
+        errors.append((e["step"], abs(ref["linear"] - exact), abs(ref["cubic"] - exact)))
+    for (h0, l0, c0), (h1, l1, c1), e in zip(errors, errors[1:], g["estimates"][1:]):
+        order = tolerance("3(c) observed orders").value
+        assert e["linear_order"] == pytest.approx(math.log(l0 / l1) / math.log(h0 / h1), abs=order)
+        assert e["cubic_order"] == pytest.approx(math.log(c0 / c1) / math.log(h0 / h1), abs=order)
+    assert g["estimates"][0]["linear_order"] is None
     ip = g["interpolation"]
     ref = plain.estimate(length, 1e-3)
     assert [row["node"] for row in ip["table"]] == [ref["j"] - 1 + k for k in range(4)]
-    assert [row["z2"] for row in ip["table"]] == pytest.approx(ref["nodes"], rel=1e-12)
-    assert [row["coefficient"] for row in ip["table"]] == pytest.approx(ref["coefficients"], rel=1e-9)
+    assert [row["t"] for row in ip["table"]] == [float(Decimal(ref["j"] - 1 + k) / 1000) for k in range(4)]
+    assert [row["z2"] for row in ip["table"]] == pytest.approx(ref["nodes"], rel=tolerance("3(d) nodes x_k = z_(2,j-1+k)").value)
+    assert [row["coefficient"] for row in ip["table"]] == pytest.approx(ref["coefficients"],
+                                                                        rel=tolerance("3(d) Newton coefficients").value)
 
 
 def test_short_pendulums_leave_the_oscillation(key):
@@ -75,15 +94,22 @@ def test_short_pendulums_leave_the_oscillation(key):
 
 def test_common_answers_once(key):
     d = key.to_dict()
-    assert set(d["common"]) == {"problem1", "problem2", "problem4", "problem5"}
+    assert set(d["common"]) == {"problem1", "problem2", "problem4", "problem4_601", "problem5"}
     assert all("problem1" not in g for g in d["groups"])
     # Independent: g = 4 pi^2 l / T^2 of 1(b), and (9) solved in closed form for 2.
     import math
 
-    assert d["common"]["problem1"]["g"] == pytest.approx(4 * math.pi**2 * 1.152 / 2.1536**2, rel=1e-15)
+    assert d["common"]["problem1"]["g"] == pytest.approx(4 * math.pi**2 * 1.152 / 2.1536**2,
+                                                         rel=tolerance("1(b) g").value)
     p = math.sqrt(9.80665 / 0.5)
     assert d["common"]["problem2"]["alpha"] == pytest.approx(2 * math.asin(2 * math.sqrt(1.5 * p / (2 * math.pi) - 1)),
-                                                             rel=1e-14)
+                                                             abs=tolerance("2 alpha").value)
+    assert d["common"]["problem4"]["points"] == 401 and d["common"]["problem4_601"]["points"] == 601
+    assert [r["n"] for r in d["common"]["problem5"]["rows"]] == [1, 10, 100, 1000, 10000, 100000]
+    q = d["common"]["problem2"]["q"]
+    x = d["common"]["problem2"]["iterates"]
+    assert q == [abs(x[k + 2] - x[k + 1]) / abs(x[k + 1] - x[k]) ** 2 for k in range(len(x) - 2)]
+    assert {t["answer"] for t in d["tolerances"]} >= {"4 normal equations A, r (6 decimals)", "5 S_n for every n"}
 
 
 def test_parse_groups_commas_spaces_comments():
@@ -91,9 +117,17 @@ def test_parse_groups_commas_spaces_comments():
     assert parse_groups(text) == [(262, 407, 634), (99999, 1), (1, 2, 3)]
 
 
+def test_parse_groups_with_names():
+    text = "262, 407, 634 | Ana Sá; João Simões; Ζωή\n1 2\n3 4 |  Ольга ;李明 \n"
+    entries = parse_entries(text)
+    assert [(e.students, e.names, e.line) for e in entries] == [
+        ((262, 407, 634), ("Ana Sá", "João Simões", "Ζωή"), 1), ((1, 2), None, 2), ((3, 4), ("Ольга", "李明"), 3)]
+
+
 @pytest.mark.parametrize("text, line", [
     ("262,407\n12a, 5\n", 2), ("1\n\n-3 4\n", 3), ("0\n", 1), ("5\n7 8\nx\n", 3), ("1.5 2\n", 1),
     ("5,,6\n", 1), ("7 8\n262 ² 634\n", 2), ("１２\n", 1),
+    ("1 2 | Ana\n", 1), ("1\n2 | A; B\n", 2), ("1 | \n", 1), ("| Ana\n", 1),
 ])
 def test_bad_line_is_named(text, line):
     with pytest.raises(InputError) as exc:
@@ -137,25 +171,74 @@ def test_cli_json(groups_file, capsys):
     d = json.loads(capsys.readouterr().out)
     assert [g["students"] for g in d["groups"]] == [[262, 407, 634], [99999, 1]]
     for g in d["groups"]:
-        assert {"students", "length", "t_hat", "estimates"} <= set(g)
+        assert {"students", "length", "t_hat", "estimates", "names", "line", "duplicate_of"} <= set(g)
+        assert "exact" not in g
         for e in g["estimates"]:
-            assert {"step", "bracket", "linear", "cubic", "cubic_error_estimate"} <= set(e)
+            assert {"step", "bracket", "linear", "cubic", "cubic_error_estimate", "linear_order"} <= set(e)
 
 
-def test_cli_csv_and_pdf(groups_file, tmp_path, capsys):
+@pytest.fixture
+def class_file(tmp_path):
+    """A class with names, a group listed twice (numbers in another order) and an l = 1 group."""
+    p = tmp_path / "class.txt"
+    p.write_text("# class\n262, 407, 634 | Ana Sá; João \"Jó\" Simões, Jr.; 李明\n45678 53221\n99999 1\n"
+                 "634 262 407\n", encoding="utf-8")
+    return p
+
+
+def test_cli_csv_is_a_plain_table(class_file, tmp_path, capsys):
+    import pandas as pd
+
     out = tmp_path / "key.csv"
-    assert main(["key", "--groups", str(groups_file), "--output", str(out)]) == 0
-    text = out.read_text()
-    rows = list(csv.DictReader(io.StringIO("\n".join(line for line in text.splitlines() if not line.startswith("#")))))
-    assert [r["students"] for r in rows] == ["262 407 634", "99999 1"]
-    assert rows[1]["plot_outcome"] == "leaves" and float(rows[1]["plot_left_at"]) == pytest.approx(4.0)
-    assert float(rows[0]["t_hat"]) == pytest.approx(plain.agm7_period(2.0800838231), rel=1e-15)
-    assert sum(line.startswith("# problem") for line in text.splitlines()) == 4
+    assert main(["key", "--groups", str(class_file), "--output", str(out)]) == 0
+    err = capsys.readouterr().err.splitlines()
+    warnings = [line for line in err if "warning" in line]
+    assert warnings == ["pendulab: warning: 1 group listed more than once: 262 407 634 (lines 2, 5)"]
+    text = out.read_text(encoding="utf-8")
+    rows = list(csv.reader(io.StringIO(text)))
+    assert len(rows) == 1 + 4 and len({len(r) for r in rows}) == 1  # one header, one row per group
+    assert not any(line.startswith("#") for line in text.splitlines())
+    df = pd.read_csv(out)  # as a spreadsheet reads it: no options
+    assert list(df["line"]) == [2, 3, 4, 5] and df.shape == (4, len(rows[0]))
+    assert list(df["duplicate_of_line"].isna()) == [True, True, True, False] and df["duplicate_of_line"][3] == 2
+    assert df["names"][0] == 'Ana Sá; João "Jó" Simões, Jr.; 李明' and df["names"].isna()[1]
+    assert list(df["sum"]) == [1303, 98899, 100000, 1303] and str(df["nonzero_digits"][2]) == "1"
+    assert list(df["h0.2_t_hat_inside"].fillna("")) == ["no", "yes", "", "no"]
+    assert df["h0.2_bracket_lo"][1] == 9.6 and df["h0.2_left_at"][2] == 4.0  # t_j = j h, no float noise
+    for h in ("0.01", "0.001", "0.0001"):
+        for col in ("j", "bracket_lo", "bracket_hi", "linear", "linear_error", "linear_order", "cubic",
+                    "cubic_error", "cubic_order", "cubic_error_estimate"):
+            assert f"h{h}_{col}" in df
+    for k in range(4):
+        assert {f"3d_node{k}", f"3d_z2{k}", f"3d_t{k}", f"3d_coefficient{k}"} <= set(df)
+    assert df["t_hat"][0] == pytest.approx(plain.agm7_period(2.0800838231), rel=1e-15)
+    # Every float cell is the shortest text that reads back as its double.
+    header = rows[0]
+    for row in rows[1:]:
+        for name, cell in zip(header, row):
+            if "." in cell and "_" in name and cell.replace(".", "").replace("-", "").replace("e", "").isdigit():
+                assert repr(float(cell)) == cell, (name, cell)
+    # The class-wide answers beside it, a plain table too.
+    side = pd.read_csv(tmp_path / "key-class.csv")
+    assert list(side.columns) == ["problem", "answer", "value"]
+    answers = dict(zip(side["answer"], side["value"]))
+    assert {"q_0", "q_1", "q_2", "k_max", "A_11", "r_7", "estimate_n100000", "ssd"} <= set(answers)
+    assert "4 (601 points)" in set(side["problem"]) and "tolerance" in set(side["problem"])
+
+
+def test_cli_pdf_has_the_class_page_and_names(class_file, tmp_path, capsys):
     pdf = tmp_path / "key.pdf"
-    assert main(["key", "--groups", str(groups_file), "--output", str(pdf)]) == 0
+    assert main(["key", "--groups", str(class_file), "--output", str(pdf)]) == 0
     reader = pypdf.PdfReader(str(pdf))
     content = "\n".join(p.extract_text() for p in reader.pages)
     assert "2.0800838231" in content and "99999, 1" in content and "leaves at" in content
+    assert "Ana Sá" in content and "line 2" in content
+    words = " ".join(content.split())
+    for phrase in ("Answers common to every group", "Problem 2", "401 points", "601 points", "Problem 5",
+                   "Marking tolerances", "relative 1e-12"):
+        assert phrase in words, phrase
+    for n in ("10000", "100000"):
+        assert f"\n{n} " in content
 
 
 @pytest.mark.parametrize("content, args, words", [

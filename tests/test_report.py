@@ -338,13 +338,17 @@ def test_every_group_problem3_matches_plain_python(group_docs):
         exact = plain.agm7_period(length)
         event = plain.first_event(length, 0.2, 4 * exact)
         outcomes.add(event[0])
-        assert doc.choices["p3b.bracket"] == f"p3b.bracket.{event[0]}" == doc.choices["p3b.tmax"].replace("tmax", "bracket")
+        assert doc.choices["p3b.tmax"] == f"p3b.tmax.{event[0]}"
         sentence = doc.entry("p3b.bracket")
         if event[0] == "returns":
             j = event[1]
+            # Where T^ lies against [t_j, t_(j+1)], by the plain program's own numbers.
+            side = "below" if exact < j * 0.2 else "above" if exact > (j + 1) * 0.2 else "inside"
+            assert doc.choices["p3b.bracket"] == f"p3b.bracket.{side}"
             assert f"t_{j} = {num(j * 0.2, 6)}" in sentence and f"t_{j + 1} = {num((j + 1) * 0.2, 6)}" in sentence
             seen = max(exact, (j + 1) * 0.2)
         else:
+            assert doc.choices["p3b.bracket"] == f"p3b.bracket.{event[0]}"
             assert f"t = {num(event[1], 6)}" in sentence
             seen = event[1]
         # t_max: a multiple of h = 0.2 with the event in view and a quarter of it to spare.
@@ -373,6 +377,13 @@ def _forced(tmp_path, students, only, patches, lang):
         return section_data(students, lang, tmp_path, only=only)
 
 
+def _with_t_hat(t_hat):
+    import dataclasses
+
+    solve = problems.problem3
+    return lambda *a, **k: dataclasses.replace(solve(*a, **k), t_hat=t_hat)
+
+
 def _forced_docs(tmp_path, lang):
     """The branches no real group reaches, each forced by changing the threshold behind it."""
     import functools
@@ -384,6 +395,9 @@ def _forced_docs(tmp_path, lang):
                             [(problems, "problem2", functools.partial(problems.problem2, x0=1.0))], lang),
         "every q_k": _forced(tmp_path, EXAMPLE, ["problem 2"], [(newton, "Q_RTOL", 1e9)], lang),
         "no return": _forced(tmp_path, EXAMPLE, ["problem 3"], [(problems, "PLOT_SEARCH_PERIODS", 1.0)], lang),
+        # The example's h = 0.2 bracket is [5, 5.2]: T^ moved inside it and beyond it.
+        "inside": _forced(tmp_path, EXAMPLE, ["problem 3"], [(problems, "problem3", _with_t_hat(5.13))], lang),
+        "above": _forced(tmp_path, EXAMPLE, ["problem 3"], [(problems, "problem3", _with_t_hat(5.47))], lang),
         "not negligible": _forced(tmp_path, EXAMPLE, ["problem 3"], [(problems, "NEGLIGIBLE_RATIO", 1e-20)], lang),
         "within tolerance": _forced(tmp_path, EXAMPLE, ["problem 4"], [(problems, "PROBLEM4_TOLERANCE", 10.0)], lang),
         "not converged": _forced(tmp_path, EXAMPLE, ["problem 5"], [(problems, "ROUNDING_FLOOR", -1.0)], lang),
@@ -403,6 +417,10 @@ def test_every_catalogue_branch_is_taken_and_true(group_docs, tmp_path, lang):
     doc = forced["no return"]
     assert doc.choices["p3b.bracket"] == "p3b.bracket.none"
     assert doc.values["p3b.search"] in doc.entry("p3b.bracket")
+    for name, side, dist in (("inside", "inside", "0.13"), ("above", "above", "0.27")):
+        doc = forced[name]
+        assert doc.choices["p3b.bracket"] == f"p3b.bracket.{side}" and doc.values["p3b.dist"] == dist
+        assert "$t_25 = 5$" in doc.entry("p3b.bracket") and dist in doc.entry("p3b.bracket")
     doc = forced["not negligible"]
     assert doc.choices["p3d.verdict"] == "p3d.verdict.not_negligible" and "10#super[−20]" in doc.entry("p3d.verdict")
     doc = forced["within tolerance"]
@@ -414,7 +432,7 @@ def test_every_catalogue_branch_is_taken_and_true(group_docs, tmp_path, lang):
     real = forced["real"]
     r2 = problems.problem2()
     assert real.choices["p2.start"] == "p2.start.fourier" and real.choices["p2c.shown"] == "p2c.shown.cut"
-    assert len(real.tables["p2c"]) == r2.run.k_max + 1  # q_0 .. q_kmax, q_2 left out as the text says
+    assert len(real.tables["p2c"]) == len(r2.run.q)  # every q_k, with its rounding error beside
     assert real.choices["p4d.ii"] == "p4d.ii.no" and real.choices["p4.alt"] == "p4.alt.no"
     assert real.choices["p5.sub"] == "p5.sub.converged"
     # Every alternative of every choice the template makes was taken by some document.

@@ -349,6 +349,31 @@ def students(name: str, texts: object) -> tuple[int, ...]:
     return tuple(int(p) for p in parts)
 
 
+#: The longest student name (characters) on a report's cover or in a key's groups file.
+MAX_NAME = 80
+
+
+def names(name: str, text: object, count: int) -> tuple[str, ...]:
+    """Student names separated by ``;``, one per student number (``count`` of them), in the
+    order of the numbers: ``"Ana Sá; João Simões; 李明"``. Any printable Unicode; each
+    name is stripped and has 1 to :data:`MAX_NAME` characters.
+    """
+    allowed = (f"{count} name{'s' if count != 1 else ''} separated by ';', one per student number, "
+               f"each of 1 to {MAX_NAME} printable characters")
+    if text is None:
+        raise InputError(name, "(missing)", allowed)
+    s = str(text)
+    if len(s) > (MAX_NAME + 2) * max(count, 1):
+        raise InputError(name, shown(s), allowed)
+    parts = tuple(" ".join(p.split()) for p in s.split(";"))
+    if len(parts) != count:
+        raise InputError(name, f"{shown(s.strip())} ({len(parts)} name{'s' if len(parts) != 1 else ''})", allowed)
+    for p in parts:
+        if not p or len(p) > MAX_NAME or not p.isprintable():
+            raise InputError(name, shown(p), allowed)
+    return parts
+
+
 # --------------------------------------------------------------------------- names, paths
 def method(name: str, text: object):
     """An integrator of :mod:`pendulab.methods`: ``taylor2``, ``rk4``, ``verlet``, ``taylor:P``."""

@@ -11,11 +11,13 @@ import math
 import os
 from collections.abc import Sequence
 from dataclasses import dataclass
+from decimal import Decimal
 from pathlib import Path
 from typing import Any
 
 from . import inputs
 from .errors import InputError
+from .period import FIXED_ITERATIONS_ULPS
 
 #: Output formats by file extension.
 FORMATS = ("csv", "json", "pdf")
@@ -23,8 +25,22 @@ FORMATS = ("csv", "json", "pdf")
 MAX_FILE_BYTES = 10**7
 
 
-def parse_groups(text: str, source: str = "groups") -> list[tuple[int, ...]]:
-    """One group per line: student numbers separated by commas or spaces.
+#: A line's names follow its numbers after this separator: ``262, 407, 634 | Ana; João; Maria``.
+NAMES_SEPARATOR = "|"
+
+
+@dataclass(frozen=True)
+class Entry:
+    """One group of the class: its student numbers, their names (optional) and its line."""
+
+    students: tuple[int, ...]
+    names: tuple[str, ...] | None = None
+    line: int | None = None
+
+
+def parse_entries(text: str, source: str = "groups") -> list[Entry]:
+    """One group per line: student numbers separated by commas or spaces, then optionally
+    ``|`` and the students' names separated by ``;``, one per number, in their order.
 
     Blank lines and ``#`` comments (whole lines or line ends) are skipped. A bad line
     raises :class:`~pendulab.errors.InputError` naming ``source`` and its line number;
@@ -32,24 +48,31 @@ def parse_groups(text: str, source: str = "groups") -> list[tuple[int, ...]]:
     """
     from .group import group_length
 
-    groups = []
+    entries = []
     for number, raw in enumerate(text.splitlines(), start=1):
         line = raw.split("#", 1)[0].strip()
         if not line:
             continue
+        numbers, sep, names_text = line.partition(NAMES_SEPARATOR)
         try:
-            students = inputs.students("groups", line)  # the CLI's grammar of student numbers
+            students = inputs.students("groups", numbers.strip())  # the CLI's grammar of student numbers
             group_length(students)
+            names = inputs.names("groups", names_text, len(students)) if sep else None
         except InputError as exc:
             raise InputError("groups", f"{source} line {number}: {inputs.shown(raw.strip())}", exc.allowed) from None
-        groups.append(students)
-    if not groups:
+        entries.append(Entry(students, names, number))
+    if not entries:
         raise InputError("groups", source, "a file with at least one group (one line of student numbers)")
-    return groups
+    return entries
 
 
-def read_groups(path: str | os.PathLike) -> list[tuple[int, ...]]:
-    """The groups of the file ``path`` (see :func:`parse_groups`)."""
+def parse_groups(text: str, source: str = "groups") -> list[tuple[int, ...]]:
+    """The student numbers of each group of ``text`` (see :func:`parse_entries`)."""
+    return [e.students for e in parse_entries(text, source)]
+
+
+def read_entries(path: str | os.PathLike) -> list[Entry]:
+    """The groups of the file ``path`` (see :func:`parse_entries`)."""
     p = Path(path)
     try:
         if p.is_file() and p.stat().st_size > MAX_FILE_BYTES:  # by its size, before reading it
@@ -58,7 +81,41 @@ def read_groups(path: str | os.PathLike) -> list[tuple[int, ...]]:
     except (OSError, UnicodeDecodeError) as exc:
         reason = exc.strerror if isinstance(exc, OSError) and exc.strerror else type(exc).__name__
         raise InputError("groups", inputs.shown(str(path)), f"a readable UTF-8 text file ({reason})") from None
-    return parse_groups(text, str(path))
+    return parse_entries(text, str(path))
+
+
+def read_groups(path: str | os.PathLike) -> list[tuple[int, ...]]:
+    """The student numbers of each group of the file ``path``."""
+    return [e.students for e in read_entries(path)]
+
+
+def duplicates(entries: Sequence[Entry]) -> dict[int, int]:
+    """``{line: line of its first listing}`` for every group listed again (the same student
+    numbers, in any order)."""
+    first: dict[tuple[int, ...], int] = {}
+    out = {}
+    for i, e in enumerate(entries, start=1):
+        line = e.line if e.line is not None else i
+        key = tuple(sorted(e.students))
+        if key in first:
+            out[line] = first[key]
+        else:
+            first[key] = line
+    return out
+
+
+def duplicate_warning(entries: Sequence[Entry]) -> str | None:
+    """One line naming every group listed more than once and its lines, or ``None``."""
+    dup = duplicates(entries)
+    if not dup:
+        return None
+    lines: dict[int, list[int]] = {}
+    for line, first in dup.items():
+        lines.setdefault(first, [first]).append(line)
+    by_line = {(e.line if e.line is not None else i): e for i, e in enumerate(entries, start=1)}
+    parts = [f"{' '.join(map(str, by_line[first].students))} (lines {', '.join(map(str, ls))})"
+             for first, ls in lines.items()]
+    return f"{len(parts)} group{'s' if len(parts) != 1 else ''} listed more than once: " + "; ".join(parts)
 
 
 def output_format(path: str | os.PathLike) -> str:
@@ -69,6 +126,65 @@ def output_format(path: str | os.PathLike) -> str:
     return ext
 
 
+def class_path(output: str | os.PathLike) -> Path:
+    """Where the class-wide CSV goes beside the per-group ``output``: ``key.csv`` -> ``key-class.csv``."""
+    p = Path(output)
+    return p.with_name(f"{p.stem}-class{p.suffix}")
+
+
+@dataclass(frozen=True)
+class Tolerance:
+    """The agreement with the key that a correct program reaches for one answer."""
+
+    answer: str
+    kind: str  # "exactly", "relative", "absolute" or a phrase (see agreement)
+    value: float | None
+    unit: str
+    why: str
+
+    @property
+    def agreement(self) -> str:
+        if self.value is None:
+            return self.kind
+        return f"{self.kind} {self.value:g}{' ' + self.unit if self.unit else ''}"
+
+
+#: What a correct program must reach for each answer, so that a teacher marks without
+#: guessing. The 3(c)-(d) figures are met by an independent plain-Python program of the
+#: coursework's formulas (tests/test_key.py checks it against them).
+TOLERANCES: tuple[Tolerance, ...] = (
+    Tolerance("1(b) g", "relative", 1e-14, "", "one formula, a few roundings"),
+    Tolerance("1(b) |e_g|, |e_g|/|g| and the corner extremes", "relative", 1e-12, "", "sums of a few products"),
+    Tolerance("1(b) significant digits", "exactly", None, "", "an integer"),
+    Tolerance("2 interval [a, b]", "contains the key's alpha", None, "", "any interval meeting the four conditions"),
+    Tolerance("2 alpha", "absolute", 1e-15, "rad", "a few ulp: the last Newton step ends at the rounding level"),
+    Tolerance("2 q_k for k <= k_max", "relative", 1e-2, "", "the bound on q_k's rounding error that defines k_max"),
+    Tolerance("2 q_k for k > k_max", "any value", None, "", "rounding noise"),
+    Tolerance("3(b) sum, its non-zero digits, l", "exactly", None, "", "integers and a 10-decimal text"),
+    Tolerance("3(b) T^ (8), 7 iterations", "relative", 1e-15, "",
+              f"{FIXED_ITERATIONS_ULPS} ulp: the order of the operations of (7)"),
+    Tolerance("3(b) h = 0.2: outcome, j, bracket, T^ inside", "exactly", None, "", "integers j; t_j = j h"),
+    Tolerance("3(c) j and bracket for each h", "exactly", None, "", "integers j; t_j = j h"),
+    Tolerance("3(c) T linear, T = p(0) and their errors", "absolute", 1e-11, "s", "rounding in up to 10^5 Taylor steps"),
+    Tolerance("3(c) observed orders", "absolute", 0.01, "", "logarithms of the errors above"),
+    Tolerance("3(d) nodes x_k = z_(2,j-1+k)", "relative", 1e-11, "", "the same Taylor steps"),
+    Tolerance("3(d) Newton coefficients", "relative", 1e-9, "", "divided differences amplify rounding"),
+    Tolerance("3(d) error estimate", "absolute", 1e-13, "s", "a difference of nearly equal numbers"),
+    Tolerance("3(d) negligible?", "exactly", None, "", "yes or no"),
+    Tolerance("4 normal equations A, r (6 decimals)", "exactly", None, "", "rounded half away from zero to 6 decimals"),
+    Tolerance("4 coefficients", "absolute", 1e-10, "", "any stable solver of the same rounded system"),
+    Tolerance("4 SSD E(c)", "relative", 1e-8, "", "a sum of squares of small deviations"),
+    Tolerance("4 max deviation", "absolute", 1e-10, "", "the deviations at the data points"),
+    Tolerance("5 S_n for every n", "relative", 1e-12, "", "sums of up to 3 x 10^5 terms"),
+    Tolerance("5 errors and rates", "relative", 1e-6, "", "differences from T^ and logarithms"),
+)
+
+
+def tolerance(answer: str) -> Tolerance:
+    """The tolerance of the answer named ``answer`` (see :data:`TOLERANCES`)."""
+    return next(t for t in TOLERANCES if t.answer == answer)
+
+
 @dataclass(frozen=True, eq=False)
 class AnswerKey:
     """The answers of every group (problem 3) and the common ones (problems 1, 2, 4, 5)."""
@@ -77,39 +193,53 @@ class AnswerKey:
     groups: list[dict[str, Any]]
 
     def to_dict(self) -> dict[str, Any]:
-        return {"common": self.common, "groups": self.groups}
+        return {"common": self.common, "groups": self.groups,
+                "tolerances": [{"answer": t.answer, "agreement": t.agreement, "why": t.why} for t in TOLERANCES]}
 
 
 def _f(x: float | None) -> float | None:
     return None if x is None or not math.isfinite(x) else float(x)
 
 
+def _time(j: int, h: float) -> float:
+    """``t_j = j h`` as the double nearest to the product of ``j`` and ``h`` as written
+    (``48 * 0.2`` is the double 9.600000000000001; the time is 9.6)."""
+    return float(Decimal(j) * Decimal(repr(h)))
+
+
 def group_answers(students: Sequence[int]) -> dict[str, Any]:
-    """One group's answers to problem 3 as plain data (JSON-ready)."""
+    """One group's answers to problem 3 as plain data (JSON-ready).
+
+    Times ``t_j`` are given as :func:`_time` (the double nearest to ``j h``).
+    """
     from . import problems
 
     r = problems.problem3(students)
     est = r.plot_estimate
+    h = r.plot.step
+    bracket = None if est is None else [_time(est.j, h), _time(est.j + 1, h)]
     plot = {
-        "step": r.plot.step,
+        "step": h,
         "outcome": r.plot_outcome,
-        "bracket": None if est is None else list(est.bracket),
         "j": None if est is None else est.j,
-        "left_at": r.plot_left_at,
+        "bracket": bracket,
+        "t_hat_inside": None if bracket is None else bracket[0] <= r.t_hat <= bracket[1],
+        "left_at": None if r.plot_left_at is None else _time(round(r.plot_left_at / h), h),
         "t_max": r.plot_t_max,
     }
     estimates = [{
-        "step": e.step, "j": e.j, "bracket": list(e.bracket),
-        "linear": e.linear, "linear_error": abs(e.linear - r.t_hat),
-        "cubic": e.cubic, "cubic_error": abs(e.cubic - r.t_hat),
+        "step": e.step, "j": e.j, "bracket": [_time(e.j, e.step), _time(e.j + 1, e.step)],
+        "linear": e.linear, "linear_error": abs(e.linear - r.t_hat), "linear_order": _f(lo_),
+        "cubic": e.cubic, "cubic_error": abs(e.cubic - r.t_hat), "cubic_order": _f(co),
         "cubic_error_estimate": e.cubic_error_estimate,
-    } for e in r.estimates]
+    } for e, lo_, co in zip(r.estimates, r.linear_orders, r.cubic_orders)]
     ip = r.cubic.interpolation
+    c = r.cubic
     interpolation = {
-        "step": r.cubic.step, "j": r.cubic.j,
-        "table": [{"node": r.cubic.j - 1 + k, "z2": float(ip.z2[k]), "t": float(ip.t[k]),
+        "step": c.step, "j": c.j,
+        "table": [{"node": c.j - 1 + k, "z2": float(ip.z2[k]), "t": _time(c.j - 1 + k, c.step),
                    "coefficient": float(ip.coefficients[k])} for k in range(4)],
-        "value": ip.value, "error_estimate": ip.error_estimate,
+        "value": ip.value, "error_estimate": ip.error_estimate, "rounding_level": ip.rounding_level,
         "taylor_error": r.taylor_error, "ratio": _f(r.interpolation_ratio),
         "negligible": r.interpolation_negligible,
     }
@@ -120,27 +250,63 @@ def group_answers(students: Sequence[int]) -> dict[str, Any]:
     }
 
 
+def _floats(a) -> list:
+    return [[float(x) for x in row] for row in a] if getattr(a, "ndim", 1) == 2 else [float(x) for x in a]
+
+
+def _problem4(p4) -> dict[str, Any]:
+    f = p4.fit
+    return {"t_max": p4.t_max, "points": p4.points, "names": list(f.names), "decimals": f.decimals,
+            "normal_matrix": _floats(f.normal_matrix), "normal_rhs": _floats(f.normal_rhs),
+            "coefficients": _floats(f.coefficients), "ssd": f.ssd, "max_deviation": f.max_deviation,
+            "argmax_deviation": f.argmax_deviation, "below_tolerance": p4.below_tolerance,
+            "tolerance": p4.tolerance}
+
+
 def common_answers() -> dict[str, Any]:
-    """Problems 1, 2, 4 and 5, which are the same for every group."""
+    """Problems 1, 2, 4 (the coursework's 401 points, and the 601 of ``Y_0 .. Y_600``) and 5,
+    which are the same for every group."""
     from . import problems
+    from .cases import PROBLEM4_ALT_T_MAX
 
     p1, p2, p4, p5 = problems.problem1(), problems.problem2(), problems.problem4(), problems.problem5()
+    p4_alt = problems.problem4(t_max=PROBLEM4_ALT_T_MAX)
+    run = p2.run
     return {
-        "problem1": {"g": p1.g, "abs_error": p1.abs_error, "rel_error": p1.rel_error,
-                     "significant_digits": p1.significant_digits, "g_text": p1.g_text},
+        "problem1": {"g": p1.g, "dg_dl": p1.dg_dl, "dg_dT": p1.dg_dT, "abs_error": p1.abs_error,
+                     "rel_error": p1.rel_error, "g_min": p1.g_min, "g_max": p1.g_max,
+                     "worst_error": p1.worst_error, "significant_digits": p1.significant_digits,
+                     "g_text": p1.g_text},
         "problem2": {"interval_degrees": list(p2.interval_degrees), "x0": p2.x0, "alpha": p2.alpha,
-                     "alpha_degrees": p2.alpha_degrees, "iterates": list(p2.run.iterates),
-                     "k_max": p2.run.k_max, "asymptotic_constant": p2.run.asymptotic_constant,
-                     "error_estimate": p2.run.error_estimate},
-        "problem4": {"t_max": p4.t_max, "points": p4.points, "names": list(p4.fit.names),
-                     "coefficients": [float(c) for c in p4.fit.coefficients], "ssd": p4.fit.ssd,
-                     "max_deviation": p4.fit.max_deviation, "below_tolerance": p4.below_tolerance},
+                     "alpha_degrees": p2.alpha_degrees, "iterates": list(run.iterates),
+                     "q": [_f(q) for q in run.q], "q_rounding": list(run.q_rounding),
+                     "k_max": run.k_max, "asymptotic_constant": run.asymptotic_constant,
+                     "error_estimate": run.error_estimate},
+        "problem4": _problem4(p4),
+        "problem4_601": _problem4(p4_alt),
         "problem5": {"t_hat": p5.t_hat, "single": p5.single, "composite10": p5.composite10,
-                     "rows": [{"n": row.n, "estimate": row.estimate, "error": row.error, "rate": row.rate}
+                     "rows": [{"n": row.n, "estimate": row.estimate, "error": row.error, "rate": row.rate,
+                               "substitution_estimate": row.substitution_estimate,
+                               "substitution_error": row.substitution_error}
                               for row in p5.rows]},
     }
 
 
-def answer_key(groups: Sequence[Sequence[int]]) -> AnswerKey:
-    """The answer key of ``groups`` (each a sequence of student numbers)."""
-    return AnswerKey(common_answers(), [group_answers(g) for g in groups])
+def answer_key(groups: Sequence[Sequence[int] | Entry]) -> AnswerKey:
+    """The answer key of ``groups`` (each an :class:`Entry` or a sequence of student numbers).
+
+    Each group's answers carry its ``line`` (in the groups file, else its place in
+    ``groups``), its ``names`` and ``duplicate_of``: the line of its first listing when the
+    same student numbers were listed before (its answers are computed once).
+    """
+    entries = [g if isinstance(g, Entry) else Entry(tuple(g)) for g in groups]
+    entries = [e if e.line is not None else Entry(e.students, e.names, i) for i, e in enumerate(entries, start=1)]
+    dup = duplicates(entries)
+    done: dict[tuple[int, ...], dict[str, Any]] = {}
+    out = []
+    for e in entries:
+        if e.students not in done:
+            done[e.students] = group_answers(e.students)
+        out.append({"line": e.line, "names": None if e.names is None else list(e.names),
+                    "duplicate_of": dup.get(e.line)} | done[e.students])  # type: ignore[arg-type]
+    return AnswerKey(common_answers(), out)

@@ -9,10 +9,12 @@ from ._common import Parsed, output
 
 @click.command()
 @click.option("--groups", "groups_file", required=True, type=Parsed(lambda s: inputs.path_text("groups", s), "file"),
-              help="A text file, one group per line: student numbers separated by commas or spaces "
-                   "(blank lines and # comments allowed).")
+              help="A text file, one group per line: student numbers separated by commas or spaces, "
+                   "optionally followed by '|' and the students' names separated by ';' "
+                   "(262, 407, 634 | Ana Sá; João Simões; Maria Luís). Blank lines and # comments allowed.")
 @click.option("--output", "-o", default=None, type=output(".csv", ".json", ".pdf"),
-              help="Write the key to this file: .csv, .json or .pdf (atomically).")
+              help="Write the key to this file: .csv (one row per group; the class-wide answers and "
+                   "the marking tolerances go to NAME-class.csv beside it), .json or .pdf (atomically).")
 @click.option("--json", "as_json", is_flag=True, help="Print the key as one JSON document on stdout.")
 def key(groups_file: str, output: str | None, as_json: bool) -> None:
     """The answers of every group (problem 3) and the common answers (problems 1, 2, 4, 5) once."""
@@ -21,7 +23,7 @@ def key(groups_file: str, output: str | None, as_json: bool) -> None:
     from ._common import emit_json
 
     # Every input checked before the work: the whole file, the output path and format.
-    groups = answer.read_groups(groups_file)
+    groups = answer.read_entries(groups_file)
     if output is not None:
         fmt = answer.output_format(output)
         check_writable("output", output)
@@ -29,6 +31,9 @@ def key(groups_file: str, output: str | None, as_json: bool) -> None:
             from .._extras import require
 
             require("typst", "pendulab key --output FILE.pdf")
+    warning = answer.duplicate_warning(groups)
+    if warning is not None:
+        click.echo(f"pendulab: warning: {warning}", err=True)
     k = answer.answer_key(groups)
     if output is not None:
         from ..report.key import write_key

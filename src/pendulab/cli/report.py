@@ -37,7 +37,14 @@ STUDENTS = Parsed(lambda s: s, "numbers")  # checked with the extra NUMBERS, in 
     type=output(".pdf"),
     help="Where to write the PDF (atomically: a failed run keeps an older file intact).",
 )
-def report(more: tuple[str, ...], students: str, lang: str, output: str) -> None:
+@click.option(
+    "--names",
+    default=None,
+    metavar="TEXT",
+    help="The students' names for the cover, separated by ';', one per student number and in "
+         "their order: --names \"Ana Sá; João Simões; Maria Luís\".",
+)
+def report(more: tuple[str, ...], students: str, lang: str, output: str, names: str | None) -> None:
     """Write the coursework report: every question 1(a)-5(d) answered, at most 15 A4 pages."""
     from .._extras import require
     from ..group import group_length
@@ -54,5 +61,6 @@ def report(more: tuple[str, ...], students: str, lang: str, output: str) -> None
     # --students 1234 5678 and 1234 5678 alone both mean the group (1234, 5678).
     numbers = inputs.students("students", ([students] if given or not more else []) + list(more))
     group_length(numbers)  # a sum with no non-zero digit fails here, before the work
-    build_report(numbers, lang=lang, output=output, progress=True)
+    cover = None if names is None else inputs.names("names", names, len(numbers))
+    build_report(numbers, lang=lang, output=output, progress=True, names=cover)
     click.echo(f"pendulab: wrote {output}", err=True)

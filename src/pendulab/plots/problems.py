@@ -22,8 +22,11 @@ def fit(ax, result, show_exact: bool = False, title: bool = True, labels: dict[s
     t, y = result.data.t, result.data.theta
     words = {"data": f"data $(t_j, z_{{1,j}})$, {len(t)} points",
              "fit": r"least squares $\tilde\phi(t)$, basis (10)", "exact": r"exact $\theta(t)$"} | (labels or {})
-    ax.plot(t, y, "o", markersize=1.2, color="C0", label=words["data"])
-    ax.plot(result.curve_t, result.curve_phi, "-", color="C3", linewidth=0.8, label=words["fit"])
+    # The curve wide and light underneath, every point small and dark over it: the fit
+    # passes through the data, and both stay visible.
+    ax.plot(result.curve_t, result.curve_phi, "-", color="C3", alpha=0.45, linewidth=2.4, zorder=2,
+            solid_capstyle="butt", label=words["fit"])
+    ax.plot(t, y, "o", markersize=1.1, color="C0", markeredgewidth=0, zorder=3, label=words["data"])
     if show_exact:
         ax.plot(result.curve_t, result.curve_exact, ":", color="0.3", linewidth=1, label=words["exact"])
     ax.set_xlabel("t (s)")
@@ -34,21 +37,27 @@ def fit(ax, result, show_exact: bool = False, title: bool = True, labels: dict[s
             rf"SSD = {result.fit.ssd:.3e}, max dev. = {result.fit.max_deviation:.2e}",
             fontsize="medium",
         )
-    ax.legend(loc="best", frameon=False, fontsize="small")
+    ax.legend(loc="best", frameon=False, fontsize="small", markerscale=3)
     ax.grid(alpha=0.3, linewidth=0.4)
     return ax
 
 
 def fit_residuals(ax, result):
-    """The deviations ``z1_j - phi~(t_j)`` of problem 4 and the 1e-5 threshold of 4(d)(ii). Returns ``ax``."""
+    """The deviations ``z1_j - phi~(t_j)`` of problem 4 and the band ``+-tolerance`` of 4(d)(ii).
+
+    The y axis is linear inside the band and logarithmic beyond (``symlog``): deviations
+    hundreds of times the tolerance and the band itself show on one plot. Returns ``ax``.
+    """
     ax = axes(ax)
-    ax.plot(result.data.t, result.fit.residuals, "-", color="C2", linewidth=0.8)
+    tol = result.tolerance
+    ax.axhspan(-tol, tol, color="C3", alpha=0.18, linewidth=0, zorder=1)
     for s in (1, -1):
-        ax.axhline(s * result.tolerance, color="C3", linestyle="--", linewidth=0.6)
-    ax.axhline(0, color="0.6", linewidth=0.5)
+        ax.axhline(s * tol, color="C3", linestyle="--", linewidth=0.6, zorder=2)
+    ax.axhline(0, color="0.6", linewidth=0.5, zorder=2)
+    ax.plot(result.data.t, result.fit.residuals, "-", color="C2", linewidth=0.8, zorder=3)
+    ax.set_yscale("symlog", linthresh=tol, linscale=1.0)
     ax.set_xlabel("t (s)")
     ax.set_ylabel(r"$z_{1,j} - \tilde\phi(t_j)$ (rad)")
-    ax.ticklabel_format(axis="y", style="sci", scilimits=(-3, 3))
     ax.grid(alpha=0.3, linewidth=0.4)
     return ax
 

@@ -18,7 +18,7 @@ from typing import Any
 
 from . import sections
 from .document import LANGUAGES, Doc, check_lang, load_catalogue
-from .typeset import typeset
+from .typeset import needs_system_fonts, typeset
 
 __all__ = ["LANGUAGES", "build_report", "compile_pdf", "load_catalogue", "section_data"]
 
@@ -93,19 +93,22 @@ def section_data(students: Sequence[int], lang: str, folder: Path, only: Sequenc
     return doc
 
 
-def compile_pdf(doc: Doc, students: Sequence[int]) -> bytes:
-    """Typeset ``doc``: its text filled, tables, figures and listings."""
+def compile_pdf(doc: Doc, students: Sequence[int], names: Sequence[str] | None = None) -> bytes:
+    """Typeset ``doc``: its text filled, tables, figures and listings; ``names`` (one per
+    student number) go on the cover beside the numbers."""
     index, blocks = doc.listings(sections.INDEX_ONLY)
     data = {
         "lang": doc.lang,
         "students": ", ".join(str(s) for s in students),
+        # Plain strings, never markup: a name is printed as typed, whatever its characters.
+        "cover": [{"name": n, "number": str(s)} for n, s in zip(names or (), students)],
         "t": doc.text(),
         "tables": doc.tables,
         "figures": doc.figures,
         "index": index,
         "code": blocks,
     }
-    return typeset(doc.tmp, "report.typ", data)
+    return typeset(doc.tmp, "report.typ", data, system_fonts=needs_system_fonts(names or ()))
 
 
 def build_report(
@@ -113,8 +116,11 @@ def build_report(
     lang: str = "en",
     output: str | os.PathLike = "report.pdf",
     progress: bool = False,
+    names: Sequence[str] | None = None,
 ) -> Path:
     """Compute every problem for the group ``students`` and write the PDF to ``output``.
+
+    ``names``, one per student number and in their order, go on the cover.
 
     The inputs are checked before any work (a bad ``output`` folder fails at once); the
     PDF is written atomically, so a failed run leaves an older ``output`` intact.
@@ -131,6 +137,10 @@ def build_report(
     out = check_writable("output", output)
     students = tuple(students)
     group_length(students)  # bad student numbers fail before the work
+    if names is not None:
+        from ..inputs import names as parse_names
+
+        names = parse_names("names", ";".join(names), len(students))
     steps = sections.SECTIONS
     with tempfile.TemporaryDirectory(prefix="pendulab-report-") as tmp, _progress(progress) as bar:
         task = bar.add_task("starting", total=len(steps) + 1)
@@ -140,7 +150,7 @@ def build_report(
             section(doc, students)
             bar.advance(task)
         bar.update(task, description="typesetting")
-        pdf = compile_pdf(doc, students)
+        pdf = compile_pdf(doc, students, names)
         bar.advance(task)
     write_bytes(out, pdf)
     return out

@@ -45,6 +45,60 @@ def sci_mp(x, digits: int = 2) -> str:
     return f"{text.replace('-', '−')} × {_sup(exp)}"
 
 
+def up(x: float, digits: int = 4) -> str:
+    """``|x|`` rounded *up* to ``digits`` significant digits, as :func:`num` writes it: a bound
+    stays a bound (0.0273622 -> 0.02737). Decided on the double's exact decimal value."""
+    from decimal import ROUND_CEILING, Decimal
+
+    d = abs(Decimal(x))
+    if d == 0 or not d.is_finite():
+        return num(abs(x), digits)
+    q = Decimal(1).scaleb(d.adjusted() - digits + 1)
+    r = d.quantize(q, rounding=ROUND_CEILING)
+    if r.adjusted() > d.adjusted():  # 9.9996 -> 10.00: one digit fewer after the carry
+        r = r.quantize(q.scaleb(1), rounding=ROUND_CEILING)
+    if -5 <= r.adjusted() < digits:
+        return format(r, "f")
+    mant, exp = f"{r:E}".split("E")
+    return f"{mant} × {_sup(int(exp))}"
+
+
+def sci_up(x: float, digits: int = 3) -> str:
+    """``|x|`` rounded *up* to ``digits`` significant digits in scientific notation (a bound)."""
+    from decimal import ROUND_CEILING, Decimal
+
+    d = abs(Decimal(x))
+    if d == 0 or not d.is_finite():
+        return sci(abs(x), digits)
+    q = Decimal(1).scaleb(d.adjusted() - digits + 1)
+    r = d.quantize(q, rounding=ROUND_CEILING)
+    if r.adjusted() > d.adjusted():
+        r = r.quantize(q.scaleb(1), rounding=ROUND_CEILING)
+    mant, exp = f"{r:.{digits - 1}E}".split("E")
+    return f"{mant} × {_sup(int(exp))}"
+
+
+def sci_beside(x: float, limit: float, digits: int = 2) -> str:
+    """``x`` in scientific notation with the fewest digits (at least ``digits``) whose value
+    lies on the same side of ``limit`` as ``x``: a number printed beside "below ``limit``"
+    never reads as ``limit`` itself."""
+    for d in range(digits, 18):
+        shown = float(f"{x:.{d - 1}e}")
+        if (shown < limit) == (x < limit) and (shown == limit) == (x == limit):
+            return sci(x, d)
+    return sci(x, 17)
+
+
+def distinct(a: float, b: float, digits: int = 16) -> tuple[str, str]:
+    """``a`` and ``b`` with the fewest significant digits (at least ``digits``, at most 17)
+    from which each reads back as its own double: two different doubles never print the
+    same digits."""
+    for d in range(digits, 17):
+        if float(f"{a:.{d}g}") == a and float(f"{b:.{d}g}") == b:
+            return num(a, d), num(b, d)
+    return num(a, 17), num(b, 17)
+
+
 def fixed(x: float, decimals: int) -> str:
     """``x`` with ``decimals`` decimals (the rounding of ``format``: half to even on the double)."""
     return f"{x:.{decimals}f}".replace("-", "−")

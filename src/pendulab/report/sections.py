@@ -12,7 +12,7 @@ import math
 from collections.abc import Sequence
 
 from .document import Constant, Doc
-from .markup import fixed, integer, num, sci, sci_mp
+from .markup import distinct, fixed, integer, num, sci, sci_beside, sci_mp, sci_up, up
 
 
 def _c(module: str, *names: str) -> list[Constant]:
@@ -59,17 +59,21 @@ def agm(doc: Doc, students: Sequence[int]) -> None:
                      sci_mp(abs(err7), 2)])
     doc.tables["agm"] = rows
     limit = period.fixed_iterations_limit()
+    t7_text, tc_text = distinct(t7, tc)  # never the same digits beside "N ulp from"
+    ulps = round(abs(t7 - tc) / math.ulp(tc))
     doc.set(**{
         "agm.l": group.text,
-        "agm.t7": num(t7, 16),
-        "agm.tc": num(tc, 16),
+        "agm.t7": t7_text,
+        "agm.tc": tc_text,
         "agm.mp": digits,
-        "agm.diff": f"{round(abs(t7 - tc) / math.ulp(tc))} ulp",
+        "agm.diff": integer(ulps),
         "agm.ulps7": integer(period.FIXED_ITERATIONS_ULPS),
         "agm.iter": integer(period.agm_iterations(alpha)),
         "agm.limit": num(limit, 16),
-        "agm.gap": sci(math.pi - limit, 2),
+        "agm.gap": sci_up(math.pi - limit, 2),
     })
+    doc.choose("agm.same", "equal" if t7 == tc else "one" if ulps == 1 else "many")
+    doc.set(**{"agm.relation": doc.entry("agm.same")})
 
 
 # ----------------------------------------------------------------------------- problem 1
@@ -87,9 +91,9 @@ def problem1(doc: Doc, students: Sequence[int]) -> None:
     doc.set(**{
         "p1.l": num(r.length, 6), "p1.dl": num(r.length_error, 3), "p1.T": num(r.period, 6),
         "p1.dT": sci(r.period_error, 1), "p1.g": num(r.g, 10), "p1.dgdl": num(r.dg_dl, 8),
-        "p1.dgdT": num(r.dg_dT, 8), "p1.abs": num(r.abs_error, 4), "p1.rel": num(r.rel_error, 4),
-        "p1.gmin": num(r.g_min, 8), "p1.gmax": num(r.g_max, 8), "p1.worst": num(r.worst_error, 4),
-        "p1.bound": num(r.error_bound, 4), "p1.digits": integer(r.significant_digits),
+        "p1.dgdT": num(r.dg_dT, 8), "p1.abs": up(r.abs_error, 4), "p1.rel": up(r.rel_error, 4),
+        "p1.gmin": num(r.g_min, 8), "p1.gmax": num(r.g_max, 8), "p1.worst": up(r.worst_error, 4),
+        "p1.bound": up(r.error_bound, 4), "p1.digits": integer(r.significant_digits),
         "p1.gtext": r.g_text, "p1.rell": sci(rel_l, 2), "p1.relT": sci(rel_t, 2),
         "p1.ratio": num(rel_l / rel_t, 2),
         "p1.k": integer(k), "p1.half": num(half, 3), "p1.halfnext": num(half_next, 3),
@@ -110,9 +114,10 @@ def problem2(doc: Doc, students: Sequence[int]) -> None:
         step = sci(xs[k + 1] - x, 3) if k + 1 < len(xs) else "—"
         rows.append([integer(k), num(x, 16), num(math.degrees(x), 14), sci(run.values[k], 3), step])
     doc.tables["p2a"] = rows
-    # The quotients up to k_max: the later ones measure rounding, not the method (2(c)).
-    shown = range(len(run.q)) if run.k_max is None else range(run.k_max + 1)
-    doc.tables["p2c"] = [[integer(k), "—" if run.q[k] is None else num(run.q[k], 10)] for k in shown]
+    # Every quotient with its relative rounding error: the reader sees q_k approach the
+    # constant while that error is small, and where rounding takes over (2(c)).
+    doc.tables["p2c"] = [[integer(k), "—" if q is None else num(q, 10), sci(rho, 1)]
+                         for k, (q, rho) in enumerate(zip(run.q, run.q_rounding))]
     qk = run.q_kmax
     const = run.asymptotic_constant
     doc.set(**{
@@ -180,14 +185,19 @@ def problem3(doc: Doc, students: Sequence[int]) -> None:
     })
     doc.choose("p3b.len", "one" if len(g.digits) == 1 else "many")
     doc.choose("p3b.tmax", r.plot_outcome)
-    doc.choose("p3b.bracket", r.plot_outcome)
     if r.plot_outcome == problems.RETURNS:
         est = r.plot_estimate
         assert est is not None
-        doc.set(**{"p3b.tj": num(est.bracket[0], 6), "p3b.tj1": num(est.bracket[1], 6),
-                   "p3b.j": integer(est.j), "p3b.j1": integer(est.j + 1),
-                   "p3b.diff": num(est.bracket[0] - r.t_hat, 3)})
-    elif r.plot_outcome == problems.LEAVES:
+        t_lo, t_hi = est.bracket
+        # Where T^ lies: inside [t_j, t_(j+1)], before it or after it (the sentence follows).
+        side = "below" if r.t_hat < t_lo else "above" if r.t_hat > t_hi else "inside"
+        dist = {"below": t_lo - r.t_hat, "above": r.t_hat - t_hi, "inside": r.t_hat - t_lo}[side]
+        doc.choose("p3b.bracket", side)
+        doc.set(**{"p3b.tj": num(t_lo, 6), "p3b.tj1": num(t_hi, 6),
+                   "p3b.j": integer(est.j), "p3b.j1": integer(est.j + 1), "p3b.dist": num(dist, 3)})
+    else:
+        doc.choose("p3b.bracket", r.plot_outcome)
+    if r.plot_outcome == problems.LEAVES:
         assert r.plot_left_at is not None
         doc.set(**{"p3b.left": num(r.plot_left_at, 6), "p3b.ratio": num(r.plot_left_at / r.t_hat, 3)})
     doc.figure("p3b_time", lambda ax: time_series(ax, r.plot, title=False))
@@ -231,7 +241,7 @@ def problem3(doc: Doc, students: Sequence[int]) -> None:
         "p3d.errest": sci(ip.error_estimate, 3),
         "p3d.t_hat": num(r.t_hat, 15),
         "p3d.taylor": sci(r.taylor_error, 3),
-        "p3d.ratio": sci(r.interpolation_ratio, 1),
+        "p3d.ratio": sci_beside(r.interpolation_ratio, problems.NEGLIGIBLE_RATIO, 1),
         "p3d.c0": num(ip.coefficients[0], 10),
         "p3d.c1": num(ip.coefficients[1], 10),
         "p3d.c2": num(ip.coefficients[2], 10),
@@ -241,7 +251,7 @@ def problem3(doc: Doc, students: Sequence[int]) -> None:
         "p3d.x2": num(ip.z2[2], 10),
         "p3d.threshold": sci(problems.NEGLIGIBLE_RATIO, 1),
         "p3d.rl": sci(ip.rounding_level, 2),
-        "p3d.bound": sci(r.interpolation_bound, 2),
+        "p3d.bound": sci_up(r.interpolation_bound, 2),
     })
     doc.choose("p3d.est", "resolved" if r.interpolation_resolved else "rounding")
     doc.choose("p3d.verdict", "negligible" if r.interpolation_negligible else "not_negligible")
@@ -249,21 +259,20 @@ def problem3(doc: Doc, students: Sequence[int]) -> None:
 
 # ----------------------------------------------------------------------------- problem 4
 P4_NAMES = {"gamma": "$gamma$", "a0": "$a_0$", "b0": "$b_0$", "a1": "$a_1$", "b1": "$b_1$", "a2": "$a_2$", "b2": "$b_2$"}
-#: The original coursework's ``Y_0 .. Y_600`` (``t_max = 6`` with ``h = 0.01``), given beside.
-P4_ALT_T_MAX = 6.0
 
 
 def problem4(doc: Doc, students: Sequence[int]) -> None:
     from .. import lsq, motion, problems
+    from ..cases import PROBLEM4_ALT_T_MAX
     from ..plots.problems import fit, fit_residuals
 
     r = problems.problem4()
-    alt = problems.problem4(t_max=P4_ALT_T_MAX)
+    alt = problems.problem4(t_max=PROBLEM4_ALT_T_MAX)
     f = r.fit
     doc.listing(problems.problem4, lsq.design_matrix, lsq.normal_equations, lsq.round_half_up, lsq.definiteness,
                 lsq.least_squares, motion.exact_motion, motion.quarter_period, motion.jacobi, motion.jacobi_agm,
                 *_c("lsq", "TRIG_BASIS"), *_c("problems", "PROBLEM4_TOLERANCE", "PROBLEM4_FINE"),
-                *_c("cases", "PROBLEM4", "PROBLEM4_STEP", "PROBLEM4_ROUND"))
+                *_c("cases", "PROBLEM4", "PROBLEM4_STEP", "PROBLEM4_ROUND", "PROBLEM4_ALT_T_MAX"))
     n = r.points - 1
     doc.tables["p4a"] = [[integer(n - 9 + k), fixed(t, 2), num(z, 12)] for k, (t, z) in enumerate(r.last_points)]
     dec = f.decimals if f.decimals is not None else 15
@@ -278,7 +287,7 @@ def problem4(doc: Doc, students: Sequence[int]) -> None:
         "p4.n": integer(n), "p4.points": integer(r.points),
         "p4.pivot": num(float(min(d.cholesky_diagonal)) ** 2, 6),
         "p4.lmin": num(d.min_eigenvalue, 6), "p4.lmax": num(d.max_eigenvalue, 6), "p4.cond": num(d.condition_number, 4),
-        "p4.pert": sci(d.rounding_perturbation, 2), "p4.shift": sci(f.coefficient_shift, 2),
+        "p4.pert": sci_up(d.rounding_perturbation, 2), "p4.shift": sci_up(f.coefficient_shift, 2),
         "p4.ssd": sci(f.ssd, 6), "p4.maxdev": sci(f.max_deviation, 4), "p4.argmax": num(f.argmax_deviation, 6),
         "p4.omega": num(2 * math.pi / r.t_hat, 6), "p4.exactdev": sci(r.exact_deviation, 3),
         "p4.exactat": num(r.exact_deviation_at, 6), "p4.taylor": sci(r.taylor_error, 3),

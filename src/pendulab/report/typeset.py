@@ -21,8 +21,23 @@ def timestamp() -> int:
     return calendar.timegm((*DEFAULT_DATE, 12, 0, 0))
 
 
-def typeset(folder: Path, template: str, data: dict[str, Any]) -> bytes:
-    """Write ``data.json`` and the packaged ``template`` into ``folder``; return the PDF."""
+#: The scripts the embedded fonts cover (code point ranges): Latin, IPA, combining marks,
+#: Greek, Cyrillic, Latin and Greek extended, punctuation.
+EMBEDDED_RANGES = ((0x0000, 0x052F), (0x1E00, 0x1FFF), (0x2000, 0x206F))
+
+
+def needs_system_fonts(texts: Any) -> bool:
+    """Whether a text of ``texts`` (student names) has a letter beyond the embedded fonts'
+    scripts (CJK, Arabic, Devanagari, ...): then the system's fonts are searched too."""
+    return any(not any(lo <= ord(ch) <= hi for lo, hi in EMBEDDED_RANGES) for t in texts for ch in t)
+
+
+def typeset(folder: Path, template: str, data: dict[str, Any], system_fonts: bool = False) -> bytes:
+    """Write ``data.json`` and the packaged ``template`` into ``folder``; return the PDF.
+
+    ``system_fonts``: also search the system's fonts (for names in other scripts); else
+    only the embedded ones, so that the same inputs give the same PDF on every machine.
+    """
     import typst
 
     (folder / "data.json").write_text(json.dumps(data, ensure_ascii=False, indent=1), encoding="utf-8")
@@ -30,6 +45,6 @@ def typeset(folder: Path, template: str, data: dict[str, Any]) -> bytes:
     return typst.compile(
         str(folder / template),
         root=str(folder),
-        ignore_system_fonts=True,  # the embedded fonts only: the same PDF on every machine
+        ignore_system_fonts=not system_fonts,
         timestamp=timestamp(),
     )

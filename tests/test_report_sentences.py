@@ -1,0 +1,316 @@
+"""The report's sentences against the data they claim, for random groups.
+
+The sections run without typesetting (``section_data``; figures are not drawn). The
+reference values come from plain Python (``plain_pendulum``, the coursework's formulas),
+mpmath at high precision, or exact decimal arithmetic, never from the section itself.
+"""
+from __future__ import annotations
+
+import json
+import math
+import re
+from decimal import Decimal
+from importlib import resources
+
+import mpmath
+import pytest
+from hypothesis import HealthCheck, given, settings
+from hypothesis import strategies as st
+
+import plain_pendulum as plain
+from pendulab import problems
+from pendulab.errors import InputError
+from pendulab.inputs import MAX_NAME, names
+from pendulab.report import load_catalogue
+from pendulab.report.markup import distinct, sci_beside, sci_up, up
+
+EXAMPLE = (262, 407, 634)
+#: Student numbers as a class has them: 1 to 4 numbers of up to 8 digits.
+GROUPS = st.lists(st.integers(1, 10**8 - 1), min_size=1, max_size=4).map(tuple)
+SLOW = settings(max_examples=6, deadline=None, suppress_health_check=[HealthCheck.too_slow])
+
+
+def value(markup: str) -> float:
+    """A number as the report's markup writes it (``2.5 × 10#super[−3]``, ``−0.5``)."""
+    text = markup.replace("−", "-")
+    m = re.fullmatch(r"(-?[0-9.]+)(?: × 10#super\[(-?[0-9]+)\])?", text)
+    assert m, markup
+    return float(Decimal(m.group(1)) * Decimal(10) ** int(m.group(2) or 0))
+
+
+def sections(students, only, lang="en", tmp_path_factory=None):
+    import tempfile
+    from pathlib import Path
+
+    from pendulab.report import document
+    from pendulab.report.builder import section_data
+
+    with pytest.MonkeyPatch.context() as mp:
+        mp.setattr(document.Doc, "figure", lambda self, name, paint, **size: self.figures.update({name: name}))
+        return section_data(students, lang, Path(tempfile.mkdtemp(prefix="pendulab-test-")), only=only)
+
+
+# ----------------------------------------------------------------------------- bounds
+def test_a_bound_is_rounded_up():
+    assert up(0.0273622, 4) == "0.02737"  # the corner maximum of 1(b)
+    assert up(0.5, 4) == "0.5000"  # exact already: unchanged
+    assert up(9.99961, 4) == "10.00"
+    assert sci_up(1.2e-6, 2) == "1.2 × 10#super[−6]"
+
+
+@settings(max_examples=300, deadline=None)
+@given(st.floats(min_value=1e-300, max_value=1e300, allow_nan=False, allow_infinity=False), st.integers(1, 6))
+def test_up_is_never_below_and_within_one_unit(x, digits):
+    for text in (up(x, digits), sci_up(x, digits)):
+        shown = Decimal(repr(value(text))) if "#super" in text else Decimal(text)
+        exact = Decimal(x)
+        assert shown >= exact
+        unit = Decimal(1).scaleb(exact.adjusted() - digits + 1)
+        assert shown - exact < unit
+
+
+@settings(max_examples=300, deadline=None)
+@given(st.floats(min_value=1e-12, max_value=1e3), st.floats(min_value=1e-12, max_value=1e3))
+def test_a_number_beside_a_threshold_stays_on_its_side(x, limit):
+    shown = value(sci_beside(x, limit, 1))
+    assert (shown < limit) == (x < limit)
+
+
+@settings(max_examples=300, deadline=None)
+@given(st.floats(min_value=1e-3, max_value=1e6), st.integers(-3, 3))
+def test_two_periods_print_equal_only_when_equal(a, ulps):
+    b = a
+    for _ in range(abs(ulps)):
+        b = math.nextafter(b, math.inf if ulps > 0 else 0.0)
+    ta, tb = distinct(a, b)
+    assert (ta == tb) == (a == b)
+    assert float(ta) == a and float(tb) == b  # each reads back as its own double
+
+
+# ----------------------------------------------------------------------------- section 0
+def correctly_rounded_period(length: float) -> float:
+    """The double nearest to the true period of the doubles l, 4pi/5, g (mpmath, 60 digits)."""
+    with mpmath.workdps(60):
+        alpha = mpmath.mpf(4 * math.pi / 5)
+        t = 2 * mpmath.pi * mpmath.sqrt(mpmath.mpf(length) / mpmath.mpf(9.80665)) / mpmath.agm(1, mpmath.cos(alpha / 2))
+        return float(t)
+
+
+@SLOW
+@given(GROUPS)
+def test_section0_never_shows_equal_digits_n_ulp_apart(students):
+    doc = sections(students, ["exact period"])
+    length = float(plain.length_text(students))
+    t7, tc = plain.agm7_period(length), correctly_rounded_period(length)
+    sentence = doc.entry("agm.text")
+    ulps = round(abs(t7 - tc) / math.ulp(tc))
+    shown7, shownc = doc.values["agm.t7"], doc.values["agm.tc"]
+    if t7 == tc:
+        assert doc.choices["agm.same"] == "agm.same.equal" and "ulp" not in doc.entry("agm.same")
+        assert f"= {shown7}$ s, equal to the correctly rounded period" in sentence
+    else:
+        assert shown7 != shownc and float(shown7) == t7 and float(shownc) == tc  # the digits tell them apart
+        assert f"{ulps} ulp from {shownc} s" in sentence
+
+
+@pytest.mark.parametrize("students, choice", [((12345, 67890), "agm.same.equal"), (EXAMPLE, "agm.same.one")])
+def test_section0_the_groups_seen_on_a_page(students, choice):
+    doc = sections(students, ["exact period"])
+    assert doc.choices["agm.same"] == choice
+    assert doc.values["agm.t7"] != doc.values["agm.tc"] or choice == "agm.same.equal"
+
+
+# ----------------------------------------------------------------------------- 3(b)
+@SLOW
+@given(GROUPS)
+def test_3b_says_where_t_hat_lies_against_the_bracket(students):
+    from pendulab.report.markup import num
+
+    doc = sections(students, ["problem 3"])
+    length = float(plain.length_text(students))
+    t_hat = plain.agm7_period(length)
+    event = plain.first_event(length, 0.2, 4 * t_hat)
+    sentence = doc.entry("p3b.bracket")
+    if event[0] != "returns":
+        assert doc.choices["p3b.bracket"] == f"p3b.bracket.{event[0]}"
+        return
+    lo, hi = event[1] * 0.2, (event[1] + 1) * 0.2
+    side, dist = ("below", lo - t_hat) if t_hat < lo else ("above", t_hat - hi) if t_hat > hi else ("inside", t_hat - lo)
+    assert doc.choices["p3b.bracket"] == f"p3b.bracket.{side}"
+    assert f"{num(dist, 3)} s" in sentence
+    assert ("too coarse" in sentence) == (side != "inside")
+
+
+@pytest.mark.parametrize("students, side", [((45678, 53221), "inside"), (EXAMPLE, "below")])
+def test_3b_the_groups_seen_on_a_page(students, side):
+    doc = sections(students, ["problem 3"])
+    assert doc.choices["p3b.bracket"] == f"p3b.bracket.{side}"
+    text = doc.entry("p3b.bracket")
+    assert ("lies inside it" in text) == (side == "inside") and ("too coarse" in text) == (side != "inside")
+
+
+# ----------------------------------------------------------------------------- 1(b), 2(c), 5
+def test_1b_bounds_are_bounds():
+    doc = sections(EXAMPLE, ["problem 1"])
+    lv, dl, tv, dt = 1.152, 0.003, 2.1536, 1e-4 * 2
+    g = 4 * math.pi**2 * lv / tv**2
+    corners = [4 * math.pi**2 * (lv + a) / (tv + b) ** 2 for a in (-dl, dl) for b in (-dt, dt)]
+    worst = max(abs(c - g) for c in corners)  # independent: the corners of the box
+    first = 4 * math.pi**2 / tv**2 * dl + 8 * math.pi**2 * lv / tv**3 * dt
+    assert value(doc.values["p1.worst"]) >= worst and value(doc.values["p1.abs"]) >= first
+    assert value(doc.values["p1.bound"]) >= max(worst, first)
+    assert "at most 0.02737" in doc.entry("p1b")
+
+
+def test_2c_shows_every_quotient_with_its_rounding():
+    doc = sections(EXAMPLE, ["problem 2"])
+    x = problems.problem2().run.iterates
+    q = [abs(x[k + 2] - x[k + 1]) / abs(x[k + 1] - x[k]) ** 2 for k in range(len(x) - 2)]
+    table = doc.tables["p2c"]
+    assert len(table) == len(q) >= 3
+    for (_k, shown, _rho), ref in zip(table, q):
+        assert value(shown) == pytest.approx(ref, rel=1e-9)
+    assert value(table[2][1]) == pytest.approx(0.3361, abs=5e-5)  # q_2 = 0.336, seen settling beside K_inf
+    assert "$q_(2)$" in doc.entry("p2c.shown")
+
+
+def test_5_the_argument_predicts_the_error():
+    """5(d): panel i from the end errs by H^(1/2) E_i, E_i = O(i^(-13/2)); their sum is the error."""
+    def e(i):  # the rule's error on s^(-1/2) over [i, i+1], against the exact 2(sqrt(i+1) - sqrt(i))
+        with mpmath.workdps(60):
+            r = mpmath.sqrt(mpmath.mpf(3) / 5)  # Gauss-Legendre, 3 points, weights 5/9, 8/9, 5/9
+            rule = sum(w / 2 * (i + mpmath.mpf(1) / 2 + x / 2) ** -0.5
+                       for x, w in ((-r, mpmath.mpf(5) / 9), (0, mpmath.mpf(8) / 9), (r, mpmath.mpf(5) / 9)))
+            return float(2 * (mpmath.sqrt(i + 1) - mpmath.sqrt(i)) - rule)
+
+    es = [e(i) for i in range(2000)]
+    slope = math.log(es[1000] / es[500]) / math.log(1000.5 / 500.5)
+    assert slope == pytest.approx(-6.5, abs=0.01)  # the neighbours: O(i^(-13/2))
+    # The singular panel misses an eighth of its 2; its neighbours add 3e-5 of that, at the same order.
+    assert es[0] / 2 == pytest.approx(0.1246, abs=1e-4) and 1e-5 < sum(es[1:]) / es[0] < 1e-4
+    r = problems.problem5()
+    row = r.rows[-1]
+    h = r.amplitude / row.n
+    predicted = 4 * math.sqrt(r.length / (2 * r.g)) * math.sqrt(h / math.sin(r.amplitude)) * sum(es)
+    assert row.error == pytest.approx(predicted, rel=2e-3)
+    doc = sections(EXAMPLE, ["problem 5"])
+    assert "(E_0 + E_1 + E_2 + dots)" in doc.entry("p5d.after") and "only $O(H^6)$" not in doc.entry("p5d.after")
+
+
+# ----------------------------------------------------------------------------- words
+def _template_order() -> list[str]:
+    template = resources.files("pendulab.report").joinpath("report.typ").read_text()
+    return re.findall(r'T\("([^"]+)"\)', template)
+
+
+@pytest.mark.parametrize("lang", ["en", "pt"])
+def test_every_reference_is_cited(lang):
+    cat = load_catalogue(lang)
+    body = json.dumps([v for k, v in cat.items() if k != "refs"], ensure_ascii=False)
+    cited = {int(n) for group in re.findall(r"\[([0-9]+(?:, [0-9]+)*)\]", body) for n in group.split(", ")}
+    listed = {int(n) for n in re.findall(r"\[([0-9]+)\]", " ".join(cat["refs"]))}
+    assert listed == {1, 2, 3, 4, 5, 6} and listed <= cited
+
+
+@pytest.mark.parametrize("lang", ["en", "pt"])
+def test_every_routine_is_justified(lang):
+    import inspect
+
+    from pendulab import group, lsq, motion, period
+
+    intro = " ".join(load_catalogue(lang)["intro"])
+    for routine in ("scipy.special.ellipkm1", "python-flint", "mpmath", "`decimal`", "scipy.linalg.cho_solve",
+                    "numpy.linalg.lstsq", "numba", "matplotlib", "Typst"):
+        assert routine in intro, routine
+    # The uses the text states are in the code: l by mpmath, K by ellipkm1, the digits by Arb.
+    assert "mpmath" in inspect.getsource(group.group_length)
+    assert "ellipkm1" in inspect.getsource(motion.quarter_period)
+    assert "flint" in inspect.getsource(period.period_ball)
+    assert "Decimal" in inspect.getsource(lsq.round_half_up)
+    assert "only for independent checks" not in intro and "apenas para verificações" not in intro
+
+
+@pytest.mark.parametrize("lang, short", [("pt", "MAG"), ("en", "AGM")])
+def test_the_abbreviation_is_defined_where_first_used(lang, short):
+    cat = load_catalogue(lang)
+    text = " ".join(" ".join(cat[k]) if isinstance(cat[k], list) else cat[k]
+                    for k in _template_order() if k in cat)
+    first = re.search(rf"\b{short}\b", text)
+    assert first and text[first.start() - 1] == "(" and text[first.end()] == ")"
+
+
+def test_catalogues_keep_parity():
+    en, pt = load_catalogue("en"), load_catalogue("pt")
+    assert list(en) == list(pt)
+    for key in en:  # the same placeholders on both sides
+        words = lambda v: sorted(re.findall(r"\{([A-Za-z][A-Za-z0-9_.]*)\}", json.dumps(v)))  # noqa: E731
+        assert words(en[key]) == words(pt[key]), key
+
+
+# ----------------------------------------------------------------------------- cover
+@settings(max_examples=100, deadline=None)
+@given(st.lists(st.text(st.characters(blacklist_categories=("Cc", "Cs", "Co", "Cn", "Zl", "Zp", "Cf"),
+                                      blacklist_characters=";"), min_size=1, max_size=MAX_NAME)
+                .map(lambda s: " ".join(s.split())).filter(bool), min_size=1, max_size=5))
+def test_names_round_trip(given_names):
+    assert names("names", " ; ".join(given_names), len(given_names)) == tuple(given_names)
+
+
+@pytest.mark.parametrize("text, count", [("A; B", 3), ("A;;B", 3), ("A", 2), ("", 1), ("x" * (MAX_NAME + 1), 1),
+                                         ("A\x1b[31m", 1), ("A; B; C; D", 3)])
+def test_bad_names_are_named(text, count):
+    with pytest.raises(InputError) as exc:
+        names("names", text, count)
+    assert exc.value.name == "names" and f"{count} name" in exc.value.allowed
+
+
+def test_names_on_the_cover(tmp_path):
+    import pypdf
+
+    from pendulab.report import build_report
+
+    out = tmp_path / "r.pdf"
+    given_names = ("Zoë Ñúñez-O'Brien", "Αλέξανδρος Παπαδόπουλος")
+    build_report((99999, 1), output=out, names=given_names)
+    first = pypdf.PdfReader(str(out)).pages[0].extract_text()
+    assert "Zoë Ñúñez-O'Brien (99999)" in first and "Αλέξανδρος Παπαδόπουλος (1)" in first
+
+
+def test_cli_names_count_is_checked_before_the_work(tmp_path, capsys, monkeypatch):
+    from pendulab.cli import main
+    from pendulab.report import builder
+
+    def no_work(*a, **k):
+        raise AssertionError("the work started")
+
+    monkeypatch.setattr(builder, "build_report", no_work)
+    monkeypatch.chdir(tmp_path)
+    assert main(["report", "--students", "1,2,3", "--names", "Ana; Rui"]) == 2
+    err = capsys.readouterr().err
+    assert err.count("\n") == 1 and "--names" in err and "3 names" in err and "Traceback" not in err
+    assert list(tmp_path.iterdir()) == []
+
+
+# ----------------------------------------------------------------------------- figures 3 and 4
+def test_figure3_points_over_the_curve_and_figure4_band_visible():
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    from pendulab.plots.problems import fit, fit_residuals
+
+    r = problems.problem4()
+    fig, (a, b) = plt.subplots(1, 2)
+    fit(a, r)
+    curve, points = a.lines[0], a.lines[1]
+    assert len(points.get_xdata()) == r.points and points.get_zorder() > curve.get_zorder()
+    fit_residuals(b, r)
+    assert b.get_yscale() == "symlog"
+    # The band +-tolerance takes a visible share of the axis height (it was 1/200 on a linear axis).
+    lo, hi = b.get_ylim()
+    tr = b.transData.transform
+    band = abs(tr((0, r.tolerance))[1] - tr((0, -r.tolerance))[1])
+    full = abs(tr((0, hi))[1] - tr((0, lo))[1])
+    assert band / full > 0.15 and max(abs(lo), abs(hi)) >= r.fit.max_deviation
+    plt.close(fig)
