@@ -39,7 +39,8 @@ def key(groups_file: str, output: str | None, as_json: bool) -> None:
         from ..report.key import write_key
 
         write_key(k, output)
-        click.echo(f"pendulab: wrote {output} ({len(groups)} groups)", err=True)
+        also = f" and {answer.class_path(output)}" if fmt == "csv" else ""
+        click.echo(f"pendulab: wrote {output}{also} ({len(groups)} groups)", err=True)
     if as_json:
         emit_json(k.to_dict())
     elif output is None:
