@@ -367,7 +367,7 @@ def names(name: str, text: object, count: int) -> tuple[str, ...]:
         raise InputError(name, shown(s), allowed)
     parts = tuple(" ".join(p.split()) for p in s.split(";"))
     if len(parts) != count:
-        raise InputError(name, f"{shown(s.strip())} ({len(parts)} name{'s' if len(parts) != 1 else ''})", allowed)
+        raise InputError(name, shown(s.strip()), f"{allowed} ({len(parts)} given)")
     for p in parts:
         if not p or len(p) > MAX_NAME or not p.isprintable():
             raise InputError(name, shown(p), allowed)
