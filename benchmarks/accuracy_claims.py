@@ -6,10 +6,10 @@ interpolation error estimate on exact times, significant digits). Each block pri
 numbers the docs quote; the stated bounds are measured by the adversarial searches of
 ``benchmarks/adversarial.py``.
 
-Run: ``.venv/bin/python benchmarks/accuracy_claims.py`` (every block, a few minutes on one
-core), or ``--write-docs [--quick]``: run only the adversarial searches and rewrite the
-table between ``<!-- accuracy:begin -->`` and ``<!-- accuracy:end -->`` in
-``docs/accuracy.md`` (``--quick``: the tests' small budgets, a fraction of a minute).
+Run: ``.venv/bin/python benchmarks/accuracy_claims.py`` (prints the measured figures), or
+``--write-docs [--quick]``: run the adversarial searches and the figures and rewrite
+everything between ``<!-- accuracy:begin -->`` and ``<!-- accuracy:end -->`` in
+``docs/accuracy.md`` (a few minutes on one core; ``--quick``: the tests' small budgets).
 """
 from __future__ import annotations
 
@@ -46,11 +46,9 @@ def mp_period(length: float, alpha, dps: int = 40):
         return 4 * mpmath.sqrt(mpmath.mpf(length) / mpmath.mpf(G)) * mpmath.ellipk(1 - kp * kp)
 
 
-def seven_iterations() -> None:
+def seven_iterations(quick: bool = False) -> tuple[str, list[str], list[list[str]]]:
     """7 iterations of (7) against the converged loop and the correctly rounded period."""
-    print("== 7 iterations of (7) (--iterations 7)")
     limit = fixed_iterations_limit()
-    print(f"fixed_iterations_limit() = {limit!r} = pi - {math.pi - limit:.3g} (truncation <= half an ulp below it)")
 
     def converged(alpha):  # (7) until a - b <= 4 eps a: the plain loop, iterated to convergence
         a, b = 1.0, math.cos(0.5 * alpha)
@@ -61,28 +59,33 @@ def seven_iterations() -> None:
         return 2 * math.pi * math.sqrt(1.0 / G) / (0.5 * (a + b))
 
     rng = np.random.default_rng(7)
-    bands = [("[0, 3.1]", None), ("pi - [1.55e-13, 1e-6]", (1.55e-13, 1e-6)),
-             ("pi - [3.24e-14, 1.55e-13]", (3.24e-14, 1.55e-13)), ("pi - [1e-15, 3.24e-14]", (1e-15, 3.24e-14))]
+    size = 100 if quick else 2000
+    bands = [("`[0, 3.1]`, uniform", None), ("`pi - [1.55e-13, 1e-6]`, log-uniform", (1.55e-13, 1e-6)),
+             ("`pi - [3.24e-14, 1.55e-13]`, log-uniform", (3.24e-14, 1.55e-13)),
+             ("`pi - [1e-15, 3.24e-14]`, log-uniform", (1e-15, 3.24e-14))]
+    rows = []
     for name, gaps in bands:
         if gaps is None:
-            alphas = rng.uniform(0.0, 3.1, 2000)
+            alphas = rng.uniform(0.0, 3.1, size)
         else:
-            alphas = math.pi - np.exp(rng.uniform(math.log(gaps[0]), math.log(gaps[1]), 2000))
+            alphas = math.pi - np.exp(rng.uniform(math.log(gaps[0]), math.log(gaps[1]), size))
         alphas = alphas[alphas < math.pi]
         t7 = agm_period(1.0, alphas, iterations=7)
         same = np.mean([x == converged(a) for x, a in zip(t7, alphas)])
         ref = adversarial.correctly_rounded_periods(1.0, alphas)
         ulps = np.abs(t7 - ref) / np.array([math.ulp(r) for r in ref])
-        print(f"  {name:27} {len(alphas)} amplitudes ({'uniform' if gaps is None else 'log-uniform in pi - alpha'}): "
-              f"same double as the converged loop {same:6.1%}, correctly rounded {np.mean(ulps == 0):6.1%}, "
-              f"at most {ulps.max():.0f} ulp off")
+        rows.append([name, str(len(alphas)), f"{same:.1%}", f"{np.mean(ulps == 0):.1%}", f"{ulps.max():.0f}"])
+    title = (f"`T^`, 7 iterations of (7), `l = 1` (`fixed_iterations_limit()` = pi - {math.pi - limit:.3g}: the "
+             "truncation is at most half an ulp below it)")
+    return title, ["amplitudes", "how many", "same double as the converged loop", "correctly rounded",
+                   "largest `abs(T^ - T)`, ulp"], rows
 
 
-def certified_digits() -> None:
-    print("== period_digits (Arb balls) against mpmath's elliptic K")
+def certified_digits(quick: bool = False) -> tuple[str, list[str], list[list[str]]]:
+    """``period_digits`` (Arb balls) against mpmath's elliptic K on random inputs as written."""
     rng = random.Random(3)
     n = ok = 0
-    for _ in range(200):
+    for _ in range(10 if quick else 200):
         places = 12
         coef = Fraction(rng.randrange(0, 10**12), 10**12)
         if rng.random() < 0.3:
@@ -97,45 +100,54 @@ def certified_digits() -> None:
             ref = 4 * mpmath.sqrt(1 / mpmath.mpf("9.80665")) * mpmath.ellipk(1 - kp * kp)
             ok += got == mpmath.nstr(ref, digits, strip_zeros=False)
         n += 1
-    print(f"  {ok} of {n} random inputs (30% within 1e-5 to 1e-40 of pi) equal mpmath's correctly rounded digits")
-    t = time.perf_counter()
-    period_digits("3.5", "4pi/5", digits=10000)
-    print(f"  10000 digits of l = 3.5, alpha = 4pi/5 in {time.perf_counter() - t:.2f} s")
+    return ("Certified digits (`period_digits`, Arb balls) against mpmath's elliptic K",
+            ["inputs", "how many", "equal to mpmath's correctly rounded digits"],
+            [["random `l = 1`, `alpha` a decimal multiple of pi (30 % within 1e-5 to 1e-40 of pi), 1 to 60 digits",
+              str(n), str(ok)]])
 
 
-def quadrature() -> None:
-    print("== quadrature_period, relative error against mpmath's elliptic K")
+def quadrature(quick: bool = False) -> tuple[str, list[str], list[list[str]]]:
+    """``quadrature_period``: relative errors against mpmath's elliptic K."""
+    rows = []
     for alpha in (1e-300, 1e-200, 1e-160):
         t = quadrature_period(1.0, alpha, 10**4)
-        print(f"  alpha = {alpha:g}: singular sum S_n, n = 1e4, relative error {abs(t / float(mp_period(1.0, alpha)) - 1):.2e} "
-              "(the n^(-1/2) truncation, as at any small amplitude)")
+        rows.append([f"`{alpha:g}`", "singular sum, n = 1e4", f"{abs(t / float(mp_period(1.0, alpha)) - 1):.2e}"])
+    ns_equal = (10**3, 10**4) if quick else (10**3, 10**4, 10**5)
     for gap in (1e-2, 1e-3, 1e-6, 1e-9, 1e-12, 1e-15):
         alpha = math.pi - gap
         ref = float(mp_period(1.0, alpha, dps=60))
-        equal = [abs(quadrature_period(1.0, alpha, n, substitution=True) / ref - 1) for n in (10**3, 10**4, 10**5)]
+        equal = [abs(quadrature_period(1.0, alpha, n, substitution=True) / ref - 1) for n in ns_equal]
         graded = [abs(quadrature_period(1.0, alpha, n, substitution=True, graded=True) / ref - 1)
                   for n in (300, 1000, 3000)]
-        print(f"  pi - {gap:g}: equal panels n = 1e3, 1e4, 1e5: " + ", ".join(f"{e:.1e}" for e in equal)
-              + "; graded n = 300, 1000, 3000: " + ", ".join(f"{e:.1e}" for e in graded))
+        rows.append([f"`pi - {gap:g}`", "substituted, equal panels, n = " + ", ".join(f"1e{round(math.log10(n))}" for n in ns_equal),
+                     ", ".join(f"{e:.1e}" for e in equal)])
+        rows.append([f"`pi - {gap:g}`", "substituted, graded, n = 300, 1000, 3000", ", ".join(f"{e:.1e}" for e in graded)])
+    return ("Quadrature (problem 5), `l = 1`: relative error against mpmath's elliptic K",
+            ["alpha", "rule", "relative error"], rows)
 
 
-def motion() -> None:
-    print("== exact_motion against mpmath.ellipfun (60 digits): largest error / exact_motion_error_bound")
+def motion(quick: bool = False) -> tuple[str, list[str], list[list[str]]]:
+    """``exact_motion`` against ``mpmath.ellipfun`` over a few periods and around the 10^6th."""
     length = 2.0800838231
+    rows = []
+    points = (20, 6) if quick else (300, 60)
     for alpha in (1.0, 3.0, math.pi - 1e-9, math.pi - 1e-12):
         period = agm_period(length, alpha)
-        for label, t in (("2.5 periods, 300 points", np.linspace(0, 2.5 * period, 300)),
-                         ("10^6th period, 60 points", np.linspace(1e6 * period, (1e6 + 1) * period, 60))):
+        for label, t in ((f"2.5 periods, {points[0]} points", np.linspace(0, 2.5 * period, points[0])),
+                         (f"10^6th period, {points[1]} points", np.linspace(1e6 * period, (1e6 + 1) * period, points[1]))):
             ex = exact_motion(length, alpha, t)
             ref = np.array([adversarial.motion_reference(length, alpha, G, ti) for ti in t])
             bt, bo = exact_motion_error_bound(length, alpha, t)
             et, eo = np.abs(ex.theta - ref[:, 0]), np.abs(ex.omega - ref[:, 1])
-            print(f"  alpha = {alpha!r:20} {label:26} max |theta error| {et.max():.2e} ({et.max() / EPS:.0f} eps), "
-                  f"/bound {np.max(et / bt):.2f}; theta' /bound {np.max(eo / bo):.2f}")
+            rows.append([f"`{alpha!r}`", label, f"{et.max():.1e} ({et.max() / EPS:.1f} eps)",
+                         f"{np.max(et / bt):.2f}", f"{np.max(eo / bo):.2f}"])
+    return ("The exact motion, `l = 2.0800838231`, against `mpmath.ellipfun` (60 digits)",
+            ["alpha", "times", "largest theta error", "/ bound", "theta' / bound"], rows)
 
 
-def interpolation() -> None:
-    print("== the 5-node error estimate of 3(d) against its rounding level (l = 2.0800838231, alpha = 4pi/5)")
+def interpolation(quick: bool = False) -> tuple[str, list[str], list[list[str]]]:
+    """The 5-node error estimate of 3(d) against its rounding level and on exact times."""
+    rows = []
     for h in (1e-2, 1e-3, 1e-4, 1e-5):
         est = estimate_period(2.0800838231, 4 * math.pi / 5, h)
         ip = est.interpolation
@@ -143,12 +155,18 @@ def interpolation() -> None:
         ts = [(est.j - 2 + k) * Fraction(h) for k in (1, 2, 3, 4, 0)]  # t_k = k h, exactly
         dd = sum(ts[k] / math.prod(x[k] - x[i] for i in range(5) if i != k) for k in range(5))
         exact = float(dd * math.prod(-xi for xi in x[:4]))
-        print(f"  h = {h:g}: estimate {ip.error_estimate:.3e}, rounding level {ip.rounding_level:.2e}, "
-              f"on exact t_k {exact:.2e} -> {'interpolation error' if ip.error_estimate_resolved else 'below rounding'}")
-    for alpha in (1e-100, 1e-160, 1e-300):
-        est = estimate_period(1.0, alpha, 1e-3)
-        print(f"  alpha = {alpha:g}, h = 1e-3: cubic {est.cubic!r}, error {est.cubic_error:.2e}, "
-              f"estimate {est.cubic_error_estimate:.2e}")
+        rows.append([f"{h:g}", f"{ip.error_estimate:.3e}" + ("" if ip.error_estimate_resolved else " (below)"),
+                     f"{ip.rounding_level:.1e}", f"{exact:.2e}"])
+    return ("The 5-node error estimate of 3(d), `l = 2.0800838231`, `alpha = 4pi/5`",
+            ["h", "error estimate", "rounding level", "same formula on exact `t_k`"], rows)
+
+
+FIGURES = (seven_iterations, quadrature, interpolation, certified_digits, motion)
+
+
+def markdown(title: str, header: list[str], rows: list[list[str]]) -> str:
+    lines = [f"**{title}**", "", "| " + " | ".join(header) + " |", "|" + "---|" * len(header)]
+    return "\n".join(lines + ["| " + " | ".join(r) + " |" for r in rows])
 
 
 # ---------------------------------------------------------------------------- the docs' table
@@ -205,8 +223,9 @@ def claims(quick: bool = False) -> list[dict]:
     return rows
 
 
-def table(rows: list[dict], near_pi: list[tuple[str, float]]) -> str:
-    """The markdown written between the markers of ``docs/accuracy.md``."""
+def table(rows: list[dict], near_pi: list[tuple[str, float]], figures: list[str] = ()) -> str:
+    """The markdown written between the markers of ``docs/accuracy.md``: the claims, ``T^``
+    beyond its limit, then the measured figures (each a :func:`markdown` table)."""
     lines = ["| claim (where stated) | stated bound | known by | worst found | where | inputs tried |",
              "|---|---|---|---|---|---|"]
     for r in rows:
@@ -215,12 +234,15 @@ def table(rows: list[dict], near_pi: list[tuple[str, float]]) -> str:
     lines += ["", "Beyond `fixed_iterations_limit()` (7 iterations have not converged; the bound above does "
               "not apply):", "", "| pendulum | `abs(T^ - T)`, ulp |", "|---|---|"]
     lines += [f"| {what} | {u:.0f} |" for what, u in near_pi]
+    if figures:
+        lines += ["", "## Measured figures", ""]
+        lines += [line for f in figures for line in (f, "")][:-1]
     return "\n".join(lines)
 
 
 def write_docs(quick: bool = False, path: Path = DOC) -> str:
     """Run the searches and rewrite the table between the markers of ``path``; returns the table."""
-    text = table(claims(quick), adversarial.t_hat_near_pi())
+    text = table(claims(quick), adversarial.t_hat_near_pi(), [markdown(*block(quick)) for block in FIGURES])
     doc = path.read_text(encoding="utf-8")
     head, rest = doc.split(BEGIN, 1)
     _, tail = rest.split(END, 1)
@@ -232,10 +254,10 @@ def main() -> None:
     if "--write-docs" in sys.argv:
         print(write_docs(quick="--quick" in sys.argv))
         return
-    for block in (seven_iterations, certified_digits, quadrature, interpolation, motion):
+    for block in FIGURES:
         t = time.perf_counter()
-        block()
-        print(f"  ({time.perf_counter() - t:.0f} s)")
+        print(markdown(*block()))
+        print(f"({time.perf_counter() - t:.0f} s)\n")
 
 
 if __name__ == "__main__":

@@ -3,7 +3,7 @@
 The searches are ``benchmarks/adversarial.py`` with small budgets (``accuracy_claims.claims(quick=True)``,
 run once for the module); references there are mpmath at 40-80 digits from the exact
 doubles and exact rationals, never the code under test. The last test checks that the
-table of ``docs/accuracy.md`` states the claims and bounds a quick run states.
+tables of ``docs/accuracy.md`` state the claims, bounds and rows a quick run states.
 """
 import math
 import re
@@ -141,12 +141,13 @@ def doc_rows(text):
 
 def test_docs_table_states_what_a_quick_run_states(quick):
     written = doc_rows((ROOT / "docs" / "accuracy.md").read_text(encoding="utf-8"))
-    fresh = doc_rows(f"{accuracy_claims.BEGIN}\n{accuracy_claims.table(quick, adversarial.t_hat_near_pi())}\n"
-                     f"{accuracy_claims.END}")
-    assert len(written) == len(fresh) > 8
+    figures = [accuracy_claims.markdown(*block(True)) for block in accuracy_claims.FIGURES]
+    text = accuracy_claims.table(quick, adversarial.t_hat_near_pi(), figures)
+    fresh = doc_rows(f"{accuracy_claims.BEGIN}\n{text}\n{accuracy_claims.END}")
+    assert len(written) == len(fresh) > 40
     for w, f in zip(written, fresh):
         assert len(w) == len(f)
         if len(f) == 6:  # a claim: where it is stated, the bound and how it is known are the same
             assert w[:3] == f[:3]
-        else:  # T^ beyond the limit: the same pendulums
+        else:  # T^ beyond the limit and the measured figures: the same rows
             assert w[0] == f[0]
