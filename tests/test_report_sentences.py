@@ -131,6 +131,11 @@ def test_3b_says_where_t_hat_lies_against_the_bracket(students):
     t_hat = plain.agm7_period(length)
     event = plain.first_event(length, 0.2, 4 * t_hat)
     sentence = doc.entry("p3b.bracket")
+    # 3(c): "observed orders {first} and then {last}, approaching 2", from the plain program's errors.
+    errors = [abs(plain.estimate(length, h)["linear"] - t_hat) for h in (1e-2, 1e-3, 1e-4)]
+    orders = [math.log10(errors[k] / errors[k + 1]) for k in range(2)]
+    assert doc.values["p3c.first"] == f"{orders[0]:.2f}" and doc.values["p3c.order"] == f"{orders[1]:.2f}"
+    assert abs(orders[1] - 2) < abs(orders[0] - 2)  # "approaching 2"
     if event[0] != "returns":
         assert doc.choices["p3b.bracket"] == f"p3b.bracket.{event[0]}"
         return
@@ -314,3 +319,10 @@ def test_figure3_points_over_the_curve_and_figure4_band_visible():
     full = abs(tr((0, hi))[1] - tr((0, lo))[1])
     assert band / full > 0.15 and max(abs(lo), abs(hi)) >= r.fit.max_deviation
     plt.close(fig)
+
+
+def test_names_beyond_the_embedded_fonts_search_the_system_fonts():
+    from pendulab.report.typeset import needs_system_fonts
+
+    assert not needs_system_fonts(["Zoë Ñúñez-O'Brien", "Αλέξανδρος", "Дмитрий", "Łukasz Żółć"])
+    assert all(needs_system_fonts([n]) for n in ("李明", "שרה כהן", "محمد", "अनिल"))

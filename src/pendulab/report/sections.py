@@ -215,7 +215,7 @@ def problem3(doc: Doc, students: Sequence[int]) -> None:
     last = r.estimates[-1]
     orders = [o for o in r.linear_orders if o is not None]
     doc.set(**{"p3c.order": fixed(orders[-1], 2), "p3c.error": sci(abs(last.linear - r.t_hat), 2),
-               "p3c.h": sci(last.step, 1), "p3c.omin": fixed(min(orders), 2), "p3c.omax": fixed(max(orders), 2)})
+               "p3c.h": sci(last.step, 1), "p3c.first": fixed(orders[0], 2)})
 
     # 3(d): the inverse cubic interpolation with h = 1e-3.
     c = r.cubic
