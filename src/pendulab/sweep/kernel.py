@@ -9,13 +9,14 @@ threads; both release the GIL.
 
 The lock-step kernel's sine and cosine are fdlibm's (within 1 ulp), not the C library's,
 so its points differ from the scalar kernel's in the last bits, and the differences grow
-along the trajectory like any rounding error. Its period estimates differ from
-:func:`pendulab.crossing.estimate_period`'s (the scalar kernel) by at most a relative
-1.3e-9 up to 179.99 degrees at h = 1e-2 to 1e-4 (measured on 43 amplitudes); near the
-separatrix, where the motion amplifies every rounding error (the scalar kernel's as
-much), by more: 3e-6 at 179.999 degrees and h = 1e-4. Everywhere below 4e-4 of the
-estimate's own error. ``tests/test_sweep.py`` checks 1e-8 (up to 179.99 degrees) and
-1e-2 of the error.
+along the trajectory like any rounding error, the more the nearer the separatrix, where
+the motion amplifies every rounding error (the scalar kernel's as much). Its period
+estimates differ from :func:`pendulab.crossing.estimate_period`'s (the scalar kernel),
+at h = 1e-2 to 1e-4, by at most a relative 1e-9 up to 179.9 degrees and 2e-7 up to
+179.99, and by at most 5 % of the scalar estimate's own error up to 179.999 degrees
+(that error is itself near rounding at h = 1e-4): measured, by an adversarial search
+towards the top (``benchmarks/adversarial.py``, ``sweep_search``; ``docs/accuracy.md``
+prints the worst cases found); ``tests/test_sweep.py`` checks fixed amplitudes.
 """
 from __future__ import annotations
 
