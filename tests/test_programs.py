@@ -188,11 +188,12 @@ def test_normal_equations_are_the_engines():
 
 
 def test_problem1_is_the_engines():
-    g, dg_dl, dg_dt, abs_error, rel_error, g_min, g_max, worst, n, g_text = P["problem1.py"].solve()
+    p = P["problem1.py"].solve()
     r = problems.problem1()
-    assert (g, dg_dl, dg_dt, abs_error, rel_error, g_min, g_max, worst) == (
-        r.g, r.dg_dl, r.dg_dT, r.abs_error, r.rel_error, r.g_min, r.g_max, r.worst_error)
-    assert (n, g_text) == (r.significant_digits, r.g_text)
+    assert (p["g"], p["dg_dl"], p["dg_dt"], p["abs_error"], p["rel_error"], p["g_min"], p["g_max"]) == (
+        r.g, r.dg_dl, r.dg_dT, r.abs_error, r.rel_error, r.g_min, r.g_max)
+    assert (p["worst"], p["bound"]) == (r.worst_error, r.error_bound)
+    assert (p["digits"], p["g_text"]) == (r.significant_digits, r.g_text)
 
 
 def test_problem2_is_the_engines():
@@ -205,8 +206,8 @@ def test_problem2_is_the_engines():
     assert x0 == r.x0
     xs, delta = p2.newton(x0)
     assert tuple(xs) == r.run.iterates and delta == r.run.rounding_level
-    q, k_max = p2.quotients(xs, delta)
-    assert k_max == r.run.k_max and q == list(r.run.q)
+    q, rho, k_max = p2.quotients(xs, delta)
+    assert k_max == r.run.k_max and q == list(r.run.q) and rho == list(r.run.q_rounding)
     # Independent: (9) solved in closed form.
     p = math.sqrt(9.80665 / 0.5)
     assert xs[-1] == pytest.approx(2 * math.asin(2 * math.sqrt(1.5 * p / (2 * math.pi) - 1)), rel=1e-15)

@@ -44,10 +44,11 @@ def pages(path) -> int:
 
 @pytest.fixture(scope="module")
 def built(tmp_path_factory):
-    """The report for the example group in English and Portuguese, and for the l = 1 group."""
+    """The report for the example group in English and Portuguese, the l = 1 group, and another in Portuguese."""
     d = tmp_path_factory.mktemp("report")
     out = {}
-    for key, students, lang in (("en", EXAMPLE, "en"), ("pt", EXAMPLE, "pt"), ("short", SHORT, "en")):
+    for key, students, lang in (("en", EXAMPLE, "en"), ("pt", EXAMPLE, "pt"), ("short", SHORT, "en"),
+                                ("other", OTHER, "pt")):
         path = d / f"{key}.pdf"
         build_report(students, lang=lang, output=path)
         out[key] = path
@@ -60,7 +61,7 @@ def test_catalogues_have_the_same_entries():
     assert en["p1.title"] != pt["p1.title"]
 
 
-@pytest.mark.parametrize("key", ["en", "pt", "short"])
+@pytest.mark.parametrize("key", ["en", "pt", "short", "other"])
 def test_builds_within_15_pages_and_every_placeholder_filled(built, key):
     n = pages(built[key])
     assert 8 <= n <= 15
@@ -132,11 +133,17 @@ def test_problem4_numbers(built):
 
 def test_problem5_numbers(built):
     text = pdf_text(built["en"])
+    from pendulab.coursework import load
+
+    p5 = load()["problem5.py"]
+    table = p5.table(load()["agm.py"].t_hat(3.5, 4 * math.pi / 5))
     r = problems.problem5()
-    assert f"{r.single:.12g}" in text
-    assert f"{r.composite10:.12g}" in text
-    for row in r.rows[1:]:
-        assert f"{row.estimate:.16g}" in text  # Table 10: 16 digits in both period columns
+    assert f"{table[0][1]:.12g}" in text and table[0][1] == pytest.approx(r.single, rel=1e-12)
+    assert f"{table[1][1]:.12g}" in text and table[1][1] == pytest.approx(r.composite10, rel=1e-12)
+    for (n, period, _, _), row in zip(table[1:], r.rows[1:]):
+        # Table 10: the program's S_n to 16 digits; the engine's agrees to rounding.
+        assert f"{period:.16g}" in text and period == pytest.approx(row.estimate, rel=1e-11), n
+        assert f"{row.substitution_estimate:.16g}" in text
 
 
 def test_agm_section(built):
@@ -145,36 +152,70 @@ def test_agm_section(built):
     assert f"{fixed_iterations_limit():.16g}" in pdf_text(built["en"])
 
 
-def test_appendix_lists_the_code_that_ran(built):
-    text = pdf_text(built["en"])
-    assert "_kernels.taylor2_step" in text
-    # A line of the kernel's body, as in the source file.
-    assert "z1_next = z1 + h * z2 + 0.5 * h * h * c * s" in text
-    # The programs the issue found missing: rule (11), basis (10), the prefactor, the drivers,
-    # the exact motion and the mpmath code of Table 1; comments and docstrings kept.
-    for name in ("quadrature.GAUSS3", "lsq.TRIG_BASIS", "quadrature.period_prefactor", "problems.problem3",
-                 "problems.plot_outcome", "problems.problem4", "motion.exact_motion",
-                 "period.fixed_iterations_error", "period.period_digits"):
-        assert name in text, name
-    assert "Rule (11): 3-point Gauss-Legendre, degree of exactness 5." in text
-    assert "Basis (10)" in text
+@pytest.mark.parametrize("key", ["en", "pt", "short", "other"])
+def test_appendix_prints_every_program_whole_unwrapped(built, key):
+    """Every line of every program, each on one line of the PDF, in the report's language,
+    after its header (the file and how to run it); the code at 9 pt."""
+    from pendulab import coursework
+
+    lang = "pt" if key in ("pt", "other") else "en"
+    text = pdf_text(built[key])
+    lines = {" ".join(line.split()) for line in text.splitlines()}
+    for name in coursework.PROGRAMS:
+        assert f"{name} {coursework.USAGE[name]}" in lines, name
+        for line in coursework.source(name, lang).splitlines():
+            if line.strip():
+                assert " ".join(line.split()) in lines, (name, line)
+    sizes = set()
+
+    def visit(text, cm, tm, font, size):
+        if text.strip() and font and "Mono" in font.get("/BaseFont", "") and size:
+            sizes.add(round(size * tm[0] * cm[0], 2))
+
+    reader = pypdf.PdfReader(str(built[key]))
+    reader.pages[-1].extract_text(visitor_text=visit)
+    assert sizes and min(sizes) >= 9
 
 
-def test_appendix_index_lists_the_jacobi_agm(built):
-    """``motion.jacobi_agm`` computes the exact motion of 4(d)(ii) (``jacobi`` only wraps it):
-    it is in the index with its file and line, like every other program that ran."""
-    import inspect
+def test_report_numbers_come_from_the_programs(tmp_path):
+    """The sections call the coursework programs, and print what they return: a program
+    made to answer differently changes the report."""
+    from pendulab.coursework import load
+    from pendulab.report.markup import num, sci
 
-    from pendulab import motion
+    p = load()
+    calls = []
 
-    line = inspect.getsourcelines(motion.jacobi_agm)[1]
-    for lang in ("en", "pt"):
-        text = pdf_text(built[lang])
-        assert re.search(rf"motion\.jacobi_agm\s+motion\.py:{line}\b", text), lang
+    def spy(module, name):
+        real = getattr(p[module], name)
+
+        def wrapper(*args, **kwargs):
+            calls.append(f"{module}:{name}")
+            return real(*args, **kwargs)
+
+        return (p[module], name, wrapper)
+
+    spies = [spy("length.py", "group_length"), spy("agm.py", "t_hat"), spy("taylor.py", "taylor"),
+             spy("problem1.py", "solve"), spy("problem2.py", "newton"), spy("problem2.py", "interval"),
+             spy("problem3.py", "period"), spy("problem3.py", "plot_t_max"), spy("problem4.py", "fit"),
+             spy("problem5.py", "table")]
+    doc = _forced(tmp_path, EXAMPLE, None, spies, "en")
+    assert {s[0].__name__ + ".py:" + s[1] for s in spies} == set(calls)
+    # The printed numbers are the programs' own.
+    r3 = p["problem3.py"].period(2.0800838231, 1e-2, p["agm.py"].t_hat(2.0800838231, 4 * math.pi / 5))
+    assert doc.tables["p3c"][0][1] == str(r3["j"]) and doc.tables["p3c"][0][3] == num(r3["linear"], 12)
+    t5 = p["problem5.py"].table(p["agm.py"].t_hat(3.5, 4 * math.pi / 5))
+    assert [row[1] for row in doc.tables["p5d"]] == [num(period, 16) for _, period, _, _ in t5[1:]]
+    assert doc.values["p1.g"] == num(p["problem1.py"].solve()["g"], 10)
+    # A program that answers differently: the report follows it.
+    changed = _forced(tmp_path, EXAMPLE, ["problem 5"],
+                      [(p["problem5.py"], "table", lambda exact: [(n, 1.25, 0.5, 0.25) for n in (1, 10, 100)])], "en")
+    assert changed.values["p5.q1"] == "1.25" and changed.values["p5.e10"] == sci(0.5, 3)
+    assert [row[1] for row in changed.tables["p5d"]] == ["1.25", "1.25"]
 
 
 def test_short_pendulum_says_the_simulation_leaves_the_oscillation(built):
-    text = words(built["short"])
+    text = words(built["short"]).split("Appendix: the programs")[0]  # the programs cite the example group
     assert "1.0000000000" in text and "2.0800838231" not in text
     assert "The step is too large for this pendulum" in text
     assert "it leaves the oscillation at t = 4 s" in text
@@ -239,33 +280,16 @@ def test_failed_run_keeps_the_older_file(tmp_path, monkeypatch):
     assert sorted(p.name for p in tmp_path.iterdir()) == ["report.pdf"]  # no temporary left
 
 
-# ----------------------------------------------------------------------------- Table 1 and Section 0
+# ----------------------------------------------------------------------------- Section 0
 def _nome_error(alpha, n=7):
-    """v_n/M - 1 = theta_3(q^(2^(n+1)))^2 - 1 (a_n = M theta_3(q^(2^n))^2): a second method."""
+    """v_n/M - 1 = theta_3(q^(2^(n+1)))^2 - 1 (a_n = M theta_3(q^(2^n))^2): the truncation
+    error of n iterations of (7), by the theta series, not by the AGM."""
     with mpmath.workdps(60):
         q = mpmath.qfrom(m=mpmath.sin(alpha / 2) ** 2)
         big_q = q ** (2 ** (n + 1))
         # theta_3(Q)^2 - 1 = 4Q + 4Q^2 + ... (series kept to where it matters)
         series = 2 * sum(big_q ** (k * k) for k in range(1, 4))
         return 2 * series + series**2
-
-
-def test_table1_column_against_the_theta_closed_form(tmp_path):
-    from pendulab.report.builder import section_data
-    from pendulab.report.markup import sci_mp
-
-    doc = section_data(EXAMPLE, "en", tmp_path, only=["exact period"])
-    column = [row[3] for row in doc.tables["agm"]]
-    with mpmath.workdps(60):
-        alphas = [mpmath.pi / 4, mpmath.pi / 2, 4 * mpmath.pi / 5, mpmath.mpf("0.99") * mpmath.pi,
-                  mpmath.pi - mpmath.mpf("1e-6"), mpmath.pi - mpmath.mpf("1e-12")]
-        expected = [sci_mp(_nome_error(a), 2) for a in alphas]
-    assert column == expected
-    # The issue's values: about 1e-513 at pi/4 and 1.7e-216 at 4 pi/5; growing with alpha.
-    assert column[0].endswith("10#super[−513]") and column[2] == "1.7 × 10#super[−216]"
-    with mpmath.workdps(60):
-        sizes = [_nome_error(a) for a in alphas]
-    assert sizes == sorted(sizes)
 
 
 def test_section0_takes_the_inputs_exactly(tmp_path):
@@ -283,7 +307,6 @@ def test_section0_takes_the_inputs_exactly(tmp_path):
 # ----------------------------------------------------------------------------- every group
 def _choice_parents() -> set[str]:
     """The keys the template shows that the catalogue only has as alternatives ``key.option``."""
-    import re
     from importlib import resources
 
     template = resources.files("pendulab.report").joinpath("report.typ").read_text()
@@ -378,28 +401,23 @@ def _forced(tmp_path, students, only, patches, lang):
 
 
 def _with_t_hat(t_hat):
-    import dataclasses
-
-    solve = problems.problem3
-    return lambda *a, **k: dataclasses.replace(solve(*a, **k), t_hat=t_hat)
+    """``agm.t_hat`` answering ``t_hat`` whatever the pendulum: T^ moved, the simulation kept."""
+    return lambda *args, **kwargs: t_hat
 
 
 def _forced_docs(tmp_path, lang):
-    """The branches no real group reaches, each forced by changing the threshold behind it."""
-    import functools
+    """The branches no real group reaches, each forced by changing the program's threshold behind it."""
+    from pendulab.coursework import load
 
-    from pendulab import newton
-
+    p = load()
     docs = {
-        "given x0": _forced(tmp_path, EXAMPLE, ["problem 2"],
-                            [(problems, "problem2", functools.partial(problems.problem2, x0=1.0))], lang),
-        "every q_k": _forced(tmp_path, EXAMPLE, ["problem 2"], [(newton, "Q_RTOL", 1e9)], lang),
-        "no return": _forced(tmp_path, EXAMPLE, ["problem 3"], [(problems, "PLOT_SEARCH_PERIODS", 1.0)], lang),
+        "every q_k": _forced(tmp_path, EXAMPLE, ["problem 2"], [(p["problem2.py"], "Q_TOL", 1e9)], lang),
+        "no return": _forced(tmp_path, EXAMPLE, ["problem 3"], [(p["problem3.py"], "SEARCH", 1.0)], lang),
         # The example's h = 0.2 bracket is [5, 5.2]: T^ moved inside it and beyond it.
-        "inside": _forced(tmp_path, EXAMPLE, ["problem 3"], [(problems, "problem3", _with_t_hat(5.13))], lang),
-        "above": _forced(tmp_path, EXAMPLE, ["problem 3"], [(problems, "problem3", _with_t_hat(5.47))], lang),
-        "not negligible": _forced(tmp_path, EXAMPLE, ["problem 3"], [(problems, "NEGLIGIBLE_RATIO", 1e-20)], lang),
-        "within tolerance": _forced(tmp_path, EXAMPLE, ["problem 4"], [(problems, "PROBLEM4_TOLERANCE", 10.0)], lang),
+        "inside": _forced(tmp_path, EXAMPLE, ["problem 3"], [(p["agm.py"], "t_hat", _with_t_hat(5.13))], lang),
+        "above": _forced(tmp_path, EXAMPLE, ["problem 3"], [(p["agm.py"], "t_hat", _with_t_hat(5.47))], lang),
+        "not negligible": _forced(tmp_path, EXAMPLE, ["problem 3"], [(p["problem3.py"], "NEGLIGIBLE", 1e-20)], lang),
+        "within tolerance": _forced(tmp_path, EXAMPLE, ["problem 4"], [(p["problem4.py"], "TOL", 10.0)], lang),
         "not converged": _forced(tmp_path, EXAMPLE, ["problem 5"], [(problems, "ROUNDING_FLOOR", -1.0)], lang),
         "real": _forced(tmp_path, EXAMPLE, None, [], lang),
     }
@@ -410,8 +428,6 @@ def _forced_docs(tmp_path, lang):
 def test_every_catalogue_branch_is_taken_and_true(group_docs, tmp_path, lang):
     forced = _forced_docs(tmp_path, lang)
     # Each forced branch says what its data say.
-    assert forced["given x0"].choices["p2.start"] == "p2.start.given"
-    assert forced["given x0"].values["p2.x0"] == "1"
     doc = forced["every q_k"]
     assert doc.choices["p2c.shown"] == "p2c.shown.all" and len(doc.tables["p2c"]) == int(doc.values["p2.qlast"]) + 1
     doc = forced["no return"]
@@ -456,9 +472,7 @@ def test_problem4_601_points_beside(built):
 @pytest.mark.parametrize("lang", ["en", "pt"])
 def test_section0_sentences_are_true(tmp_path, lang):
     """Each claim of section 0 against the data it names, computed here independently."""
-    import re
 
-    import numpy as np
     from flint import arb, ctx
 
     import plain_pendulum as plain
@@ -466,7 +480,7 @@ def test_section0_sentences_are_true(tmp_path, lang):
     from pendulab.report.builder import section_data
 
     doc = section_data(EXAMPLE, lang, tmp_path, only=["exact period"])
-    text, limit_text = doc.entry("agm.text"), doc.entry("agm.limit.text")
+    text = doc.entry("agm.text")
     length, alpha = 2.0800838231, 4 * math.pi / 5
 
     def nearest(l_, a):  # the true period of the doubles (elliptic K, not the AGM), rounded once
@@ -474,13 +488,13 @@ def test_section0_sentences_are_true(tmp_path, lang):
             t = 4 * mpmath.sqrt(mpmath.mpf(l_) / mpmath.mpf(9.80665)) * mpmath.ellipk(mpmath.sin(mpmath.mpf(a) / 2) ** 2)
             return mpmath.libmp.to_float(t._mpf_, rnd="n")
 
-    # "T^ = t7 s, n ulp from tc s, the correctly rounded period of the same doubles"
+    # "T^ = t7 s, n ulp from the correctly rounded period of the same doubles, tc s"
     t7, tc = plain.agm7_period(length), nearest(length, alpha)
     ulps = round(abs(t7 - tc) / math.ulp(tc))
-    connective = "from" if lang == "en" else "de"
     # Digits enough for each to read back as its own double (17 here): never the same digits twice.
     d = next(d for d in (16, 17) if float(f"{t7:.{d}g}") == t7 and float(f"{tc:.{d}g}") == tc)
     assert f"{t7:.{d}g}" != f"{tc:.{d}g}"
+    connective = "from" if lang == "en" else "de"
     assert f"$hat(T) = {t7:.{d}g}$ s, {'' if lang == 'en' else 'a '}{ulps} ulp {connective} {tc:.{d}g} s" in text
     # "the interval's two ends round to the same 20 digits": the ball contains mpmath's period
     # and is narrower than the rounding interval's half-width around the printed digits.
@@ -493,11 +507,11 @@ def test_section0_sentences_are_true(tmp_path, lang):
         assert (ball - arb(digits)).abs_upper() < half  # both ends round to the printed digits
     finally:
         ctx.prec = old
-    # "by at most N ulp" up to the truncation limit: T^ (the plain loop) against the
-    # correctly rounded period (elliptic K) on random amplitudes, dense near the limit.
-    limit_ulps = int(re.search(r"(\d+) ulp", limit_text).group(1))
-    limit = float(re.search(r"alpha <= ([0-9.]+)\$", limit_text).group(1))
-    rng = np.random.default_rng(5)
-    alphas = [*rng.uniform(0, 3.1, 40), *(math.pi - np.exp(rng.uniform(np.log(math.pi - limit), np.log(1e-3), 40)))]
-    worst = max(abs(plain.agm7_period(1.0, a) - nearest(1.0, a)) / math.ulp(nearest(1.0, a)) for a in alphas)
-    assert worst <= limit_ulps
+    # "7 iterations leave a truncation error below half an ulp for every alpha <= limit":
+    # by the theta series, at the limit and (just) beyond it.
+    limit = mpmath.mpf(re.search(r"alpha <= ([0-9.]+)\$", text).group(1))
+    gap = re.search(r"pi - alpha = ([0-9.]+) × 10#super\[−(\d+)\]", text)
+    with mpmath.workdps(60):
+        half_ulp = mpmath.mpf(2) ** -53
+        assert _nome_error(limit) <= half_ulp < _nome_error(limit + (mpmath.pi - limit) / 2)
+        assert _nome_error(mpmath.pi - mpmath.mpf(f"{gap[1]}e-{gap[2]}")) <= half_ulp

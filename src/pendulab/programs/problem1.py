@@ -31,14 +31,18 @@ def solve():
     # g grows with l and falls with T: its exact range over the box l +- dl, T +- dT
     g_min, g_max = gravity(L - DL, T + DT), gravity(L + DL, T - DT)
     worst = max(g_max - g, g - g_min)
-    n = significant_digits(g, max(abs_error, worst))
+    bound = max(abs_error, worst)
+    n = significant_digits(g, bound)
     place = Decimal(10) ** (math.floor(math.log10(g)) - n + 1)
     g_text = str(Decimal(g).quantize(place, rounding=ROUND_HALF_UP))
-    return g, dg_dl, dg_dt, abs_error, rel_error, g_min, g_max, worst, n, g_text
+    return {"g": g, "dg_dl": dg_dl, "dg_dt": dg_dt, "abs_error": abs_error,
+            "rel_error": rel_error, "g_min": g_min, "g_max": g_max, "worst": worst,
+            "bound": bound, "digits": n, "g_text": g_text}
 
 if __name__ == "__main__":
-    g, dg_dl, dg_dt, abs_error, rel_error, g_min, g_max, worst, n, g_text = solve()
-    print(f"g = {g!r} m/s^2, dg/dl = {dg_dl:.8g}, dg/dT = {dg_dt:.8g}")
-    print(f"1(a) |e_g| <= {abs_error:.4g} m/s^2, |e_g|/g <= {rel_error:.4g}")
-    print(f"1(b) g in [{g_min:.8g}, {g_max:.8g}], worst error {worst:.4g}:",
-          f"{n} significant digits, g = {g_text} m/s^2")
+    r = solve()
+    print(f"g = {r['g']!r} m/s^2, dg/dl = {r['dg_dl']:.8g}, dg/dT = {r['dg_dt']:.8g}")
+    print(f"1(a) |e_g| <= {r['abs_error']:.4g} m/s^2, |e_g|/g <= {r['rel_error']:.4g}")
+    print(f"1(b) g in [{r['g_min']:.8g}, {r['g_max']:.8g}],",
+          f"worst error {r['worst']:.4g}: {r['digits']} significant digits,",
+          f"g = {r['g_text']} m/s^2")

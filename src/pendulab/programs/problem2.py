@@ -8,6 +8,7 @@ import math
 G, L, TARGET = 9.80665, 0.5, 1.5
 T0 = 2 * math.pi / math.sqrt(G / L)  # 2 pi/p, the small-angle period
 U = 2.0**-53  # the unit roundoff of the doubles
+Q_TOL = 0.01  # 2(c): q_k is kept while its rounding error is at most 1 %
 
 def f(x):
     k = math.sin(0.5 * x)
@@ -43,13 +44,13 @@ def newton(x):
             return xs, delta
 
 def quotients(xs, delta):
-    """2(c): q_k = |x_(k+2) - x_(k+1)| / |x_(k+1) - x_k|^2, kept up to k_max: the last
-    k whose rounding error delta/d_(k+1) + 2 delta/d_k is at most 1 %."""
+    """2(c): q_k = |x_(k+2) - x_(k+1)| / |x_(k+1) - x_k|^2, its relative rounding error
+    rho_k = delta/d_(k+1) + 2 delta/d_k, and k_max, the last k with rho_k <= Q_TOL."""
     d = [abs(x1 - x0) for x0, x1 in zip(xs, xs[1:])]
     q = [d[k + 1] / d[k] ** 2 for k in range(len(d) - 1)]
     rho = [delta / d[k + 1] + 2 * delta / d[k] for k in range(len(d) - 1)]
-    k_max = next((k - 1 for k, r in enumerate(rho) if r > 0.01), len(rho) - 1)
-    return q, k_max
+    k_max = next((k - 1 for k, r in enumerate(rho) if r > Q_TOL), len(rho) - 1)
+    return q, rho, k_max
 
 if __name__ == "__main__":
     a, b, steps, holds = interval()
@@ -65,7 +66,7 @@ if __name__ == "__main__":
     c = abs(d2f(xs[-1]) / (2 * df(xs[-1])))  # the limit of q_k, |f''(z) / (2 f'(z))|
     # 2(b): quadratic, so |z - x_N| ~ C |x_N - x_(N-1)|^2, plus the rounding level
     print(f"2(b) |alpha - x_N| <= {c * (xs[-1] - xs[-2]) ** 2 + delta:.2e}")
-    q, k_max = quotients(xs, delta)
-    for k in range(k_max + 1):
-        print(f"2(c) q_{k} = {q[k]:.10f}")
+    q, rho, k_max = quotients(xs, delta)
+    for k in range(len(q)):
+        print(f"2(c) q_{k} = {q[k]:.10f}, relative rounding error {rho[k]:.1e}")
     print(f"     k_max = {k_max}; C = |f''/(2 f')| = {c:.10f}")

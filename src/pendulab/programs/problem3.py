@@ -13,6 +13,8 @@ from taylor import taylor
 
 ALPHA = 4 * math.pi / 5
 STEPS = [1e-2, 1e-3, 1e-4]  # 3(c): h = 10^-j, j = 2, 3, 4; 3(d) uses h = 1e-3
+SEARCH = 4  # 3(b): the h = 0.2 simulation is searched over 4 T^
+NEGLIGIBLE = 1e-3  # 3(d): an error below 1/1000 of the Taylor method's is negligible
 
 def sign_change(z1, z2):
     """The first j with z2_j > 0 >= z2_(j+1) and z1_(j+1) > 0 (None if none), and
@@ -54,12 +56,12 @@ def period(l, h, exact):
 def plot_t_max(l, exact, h=0.2):
     """3(b): 1.25 times the first event of the h = 0.2 simulation over 4 T^: its
     return to P (T^ if later), or the time it goes over the top; a multiple of h."""
-    t, z1, z2 = taylor(l, ALPHA, h, 4 * exact)
+    t, z1, z2 = taylor(l, ALPHA, h, SEARCH * exact)
     j, over = sign_change(z1, z2)
     if j is not None:
         event = max(exact, t[j + 1])
     else:  # over the top at t[over], or neither within 4 T^
-        event = t[over] if over is not None else 4 * exact / 1.25
+        event = t[over] if over is not None else SEARCH * exact / 1.25
     return h * math.ceil(round(1.25 * event / h, 9)), j, over, t
 
 def order(e0, e1, h0, h1):
@@ -87,7 +89,7 @@ if __name__ == "__main__":
     for k in range(5):
         print(f"    {r['z2'][k]!r:<24} {r['t'][k]:.3f}  {r['coef'][k]!r}")
     error = abs(r["p0"] - exact)  # the Taylor method's error in the period
-    small = max(abs(r["e0"]), r["rounding"]) < 1e-3 * error
+    small = max(abs(r["e0"]), r["rounding"]) < NEGLIGIBLE * error
     print(f"    p(0) = {r['p0']!r}, e(0) ~ {r['e0']:.3e}",
           f"(rounding {r['rounding']:.2e}); |p(0) - T^| = {error:.3e}:",
           "negligible" if small else "not negligible")

@@ -14,6 +14,7 @@ from taylor import taylor
 
 L, ALPHA, H = 3.5, math.pi / 4, 0.01
 NAMES = ["gamma", "a0", "b0", "a1", "b1", "a2", "b2"]
+TOL = 1e-5  # 4(d)(ii)
 
 def basis(t):
     """The design matrix: phi_i(t_j) of (10), one row per point t_j."""
@@ -61,4 +62,4 @@ if __name__ == "__main__":
     j = int(np.argmax(np.abs(res)))
     print(f"     sum of squared deviations {math.fsum(res**2):.6e}")
     print(f"     max |z1_j - phi(t_j)| = {abs(res[j]):.4e} at t = {t[j]:.2f}:",
-          "below" if abs(res[j]) < 1e-5 else "not below", "1e-5")
+          "below" if abs(res[j]) < TOL else "not below", TOL)

@@ -1,11 +1,12 @@
 """Build the coursework report: compute every problem, draw, typeset with Typst.
 
-The flow: each section of :mod:`.sections` takes a result of :mod:`pendulab.problems`,
-formats its numbers (:mod:`.markup`) and records values, tables, figures and the
-programs that ran in a :class:`~.document.Doc`; the catalogue of the chosen language
+The flow: each section of :mod:`.sections` runs the coursework programs
+(:mod:`pendulab.coursework`; the engine for what goes beyond the coursework), formats
+their numbers (:mod:`.markup`) and records values, tables and figures in a
+:class:`~.document.Doc`; the catalogue of the chosen language
 (``en.json`` / ``pt.json``) supplies the prose, whose ``{placeholders}`` are filled with
-those numbers; ``report.typ`` lays it all out (:mod:`.typeset`). Nothing in the PDF is
-typed in by hand: every number comes from this run.
+those numbers; ``report.typ`` lays it all out (:mod:`.typeset`), the programs whole in
+the appendix. Nothing in the PDF is typed in by hand: every number comes from this run.
 """
 from __future__ import annotations
 
@@ -93,10 +94,17 @@ def section_data(students: Sequence[int], lang: str, folder: Path, only: Sequenc
     return doc
 
 
+def appendix(lang: str) -> list[dict[str, str]]:
+    """The programs the sections ran, whole, in ``lang``: file name, how to run it, source."""
+    from .. import coursework
+
+    return [{"name": name, "run": coursework.USAGE[name], "source": coursework.source(name, lang)}
+            for name in coursework.PROGRAMS]
+
+
 def compile_pdf(doc: Doc, students: Sequence[int], names: Sequence[str] | None = None) -> bytes:
-    """Typeset ``doc``: its text filled, tables, figures and listings; ``names`` (one per
-    student number) go on the cover beside the numbers."""
-    index, blocks = doc.listings(sections.INDEX_ONLY)
+    """Typeset ``doc``: its text filled, tables, figures, and the programs in the appendix;
+    ``names`` (one per student number) go on the cover beside the numbers."""
     data = {
         "lang": doc.lang,
         "students": ", ".join(str(s) for s in students),
@@ -105,8 +113,7 @@ def compile_pdf(doc: Doc, students: Sequence[int], names: Sequence[str] | None =
         "t": doc.text(),
         "tables": doc.tables,
         "figures": doc.figures,
-        "index": index,
-        "code": blocks,
+        "code": appendix(doc.lang),
     }
     return typeset(doc.tmp, "report.typ", data, system_fonts=needs_system_fonts(names or ()))
 

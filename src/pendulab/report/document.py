@@ -1,16 +1,12 @@
-"""The document model: the catalogue's prose, this run's values, tables, figures, listings.
+"""The document model: the catalogue's prose, this run's values, tables and figures.
 
 Sections fill a :class:`Doc`; :mod:`.typeset` turns it into a PDF. Imports run one way:
 ``markup`` <- ``document`` <- ``sections`` <- ``builder``.
 """
 from __future__ import annotations
 
-import ast
-import inspect
 import json
 import re
-import sys
-import textwrap
 from collections.abc import Callable
 from dataclasses import dataclass, field
 from importlib import resources
@@ -36,17 +32,9 @@ def load_catalogue(lang: str) -> dict[str, Any]:
     return json.loads(text)
 
 
-@dataclass(frozen=True)
-class Constant:
-    """A module-level constant whose value the report uses: listed with its comment."""
-
-    module: str
-    name: str
-
-
 @dataclass
 class Doc:
-    """What the template needs: values for the prose, tables, figures, listings."""
+    """What the template needs: values for the prose, tables, figures."""
 
     lang: str
     catalogue: dict[str, Any]
@@ -55,7 +43,6 @@ class Doc:
     choices: dict[str, str] = field(default_factory=dict)
     tables: dict[str, Any] = field(default_factory=dict)
     figures: dict[str, str] = field(default_factory=dict)
-    programs: list[Callable | Constant] = field(default_factory=list)
 
     def word(self, key: str) -> str:
         """A catalogue entry as one string (lists are lines)."""
@@ -76,12 +63,6 @@ class Doc:
         from .figures import draw
 
         self.figures[name] = draw(paint, self.tmp / f"{name}.svg", **size)
-
-    def listing(self, *programs: Callable | Constant) -> None:
-        """Record functions and constants whose source goes into the appendix (the code that ran)."""
-        for p in programs:
-            if p not in self.programs:
-                self.programs.append(p)
 
     def text(self) -> dict[str, str]:
         """Every catalogue entry with its ``{placeholders}`` filled (alternatives: the chosen one)."""
@@ -112,79 +93,3 @@ class Doc:
             return self.values[name]
 
         return re.sub(r"\{([A-Za-z][A-Za-z0-9_.]*)\}", repl, text)
-
-    def listings(self, index_only: frozenset[str] = frozenset()) -> tuple[list[dict[str, str]], list[dict[str, str]]]:
-        """The appendix: an index of every program, and the blocks of source to print.
-
-        Each index entry has the program's ``name``, ``where`` (``file:line``) and ``printed``
-        (``"no"`` for the names in ``index_only``). The constants of one module are printed
-        together, in the module's order, as one block.
-        """
-        index, blocks = [], []
-        constants: dict[str, list[tuple[int, str]]] = {}
-        for p in self.programs:
-            entry = program_source(p)
-            shown = entry["name"] not in index_only
-            index.append({"name": entry["name"], "where": entry["where"], "printed": "yes" if shown else "no"})
-            if not shown:
-                continue
-            if entry["kind"] == "constant":
-                module, line = entry["where"].split(":")
-                constants.setdefault(module, []).append((int(line), entry["source"]))
-            else:
-                blocks.append({"title": f"{entry['name']} ({entry['where']})", "source": entry["source"]})
-        for module, items in constants.items():
-            blocks.append({"title": f"constants of {module}",
-                           "source": "\n".join(src for _, src in sorted(set(items)))})
-        return index, blocks
-
-
-# ----------------------------------------------------------------------------- listings
-def _trim_docstring(doc: str) -> str:
-    """The docstring's first paragraph: what the program computes (the rest restates the
-    signature or the references, and the 15 pages have no room for it)."""
-    return doc.strip().split("\n\n")[0]
-
-
-def _function_source(func: Callable) -> dict[str, str]:
-    func = getattr(func, "py_func", func)  # numba dispatchers keep the Python function
-    lines, first = inspect.getsourcelines(func)
-    src = textwrap.dedent("".join(lines))
-    node = ast.parse(src).body[0]
-    body = getattr(node, "body", [])
-    text = src.splitlines()
-    first_stmt = body[0] if body else None
-    if (isinstance(first_stmt, ast.Expr) and isinstance(first_stmt.value, ast.Constant)
-            and isinstance(first_stmt.value.value, str)):
-        d0, d1 = first_stmt.lineno - 1, first_stmt.end_lineno
-        indent = text[d0][: len(text[d0]) - len(text[d0].lstrip())]
-        doc = _trim_docstring(inspect.cleandoc(first_stmt.value.value))
-        quoted = ('"""' + doc + '"""').splitlines()
-        text = text[:d0] + [indent + q if q else "" for q in quoted] + text[d1:]
-    module = func.__module__.removeprefix("pendulab.")
-    path = Path(inspect.getsourcefile(func) or "?").name
-    text = [line for line in text if line.strip()]  # blank lines: paper, not program
-    return {"name": f"{module}.{func.__qualname__}", "where": f"{path}:{first}", "source": "\n".join(text),
-            "kind": "function"}
-
-
-def _constant_source(c: Constant) -> dict[str, str]:
-    """The assignment of ``c`` in its module with the comment lines just above it."""
-    module = sys.modules.get(c.module) or __import__(c.module, fromlist=["_"])
-    src = inspect.getsource(module)
-    lines = src.splitlines()
-    for node in ast.parse(src).body:
-        targets = node.targets if isinstance(node, ast.Assign) else [node.target] if isinstance(node, ast.AnnAssign) else []
-        if any(isinstance(t, ast.Name) and t.id == c.name for t in targets):
-            start = node.lineno - 1
-            while start > 0 and lines[start - 1].lstrip().startswith("#"):
-                start -= 1
-            path = Path(inspect.getsourcefile(module) or "?").name
-            return {"name": f"{c.module.removeprefix('pendulab.')}.{c.name}", "where": f"{path}:{node.lineno}",
-                    "source": "\n".join(lines[start:node.end_lineno]), "kind": "constant"}
-    raise LookupError(f"{c.module} assigns no constant {c.name}")
-
-
-def program_source(p: Callable | Constant) -> dict[str, str]:
-    """Name, ``file:line`` and source (docstring trimmed of its signature sections)."""
-    return _constant_source(p) if isinstance(p, Constant) else _function_source(p)
