@@ -18,6 +18,7 @@ from conftest import ellipk_period
 from pendulab import methods, taylor
 from pendulab.cli import main
 from pendulab.crossing import estimate_period
+from pendulab.motion import energy, exact_motion
 from pendulab.web import create_app, limits, parameters, sampling, views
 
 
@@ -290,12 +291,26 @@ def test_page_and_its_files_are_local(client):
     assert client.get("/static/style.css").headers["content-type"].startswith("text/css")
 
 
-def test_plotly_is_served_from_the_installed_package(client):
-    import plotly
+def test_plotly_is_the_shipped_basic_bundle_with_its_licence(client):
+    from pendulab.web.app import STATIC
 
     r = client.get("/vendor/plotly.min.js")
-    assert r.status_code == 200
-    assert r.content == (Path(plotly.__file__).parent / "package_data" / "plotly.min.js").read_bytes()
+    assert r.status_code == 200 and r.headers["content-type"].startswith("text/javascript")
+    assert r.content == (STATIC / "plotly-basic.min.js").read_bytes()
+    assert r.content.startswith(b"/**\n* plotly.js (basic - minified)")
+    assert "MIT License" in (STATIC / "plotly-basic.LICENSE.txt").read_text()
+
+
+@pytest.mark.parametrize("path", ["/", "/static/app.js", "/vendor/plotly.min.js", "/api/config",
+                                  "/api/simulate?length=1&amplitude=30deg&step=1e-3&t_max=20"])
+def test_answers_are_gzipped_when_the_client_accepts_it(client, path):
+    plain = client.get(path, headers={"Accept-Encoding": "identity"})
+    packed = client.get(path, headers={"Accept-Encoding": "gzip"})
+    assert "content-encoding" not in plain.headers
+    assert packed.headers["content-encoding"] == "gzip"
+    # httpx decodes it: the same bytes, sent in fewer (the raw stream is the gzip member).
+    assert packed.content == plain.content
+    assert int(packed.headers["content-length"]) < 0.5 * len(plain.content)
 
 
 @pytest.mark.parametrize("path", ["/static/nothing.js", "/static/..%2fapp.py", "/static/%2e%2e/api.py", "/api/nothing", "/nothing"])
@@ -514,3 +529,67 @@ def test_a_run_shorter_than_a_period_is_drawn(client):
         assert body["n_steps"] == 20_000 and 2 <= len(body["frames"]["t"]) <= sampling.FRAME_POINTS
         assert 2 <= len(body["phase"]["theta"]) <= sampling.PHASE_POINTS and None not in body["phase"]["theta"]
         assert body["frames"]["t"][-1] == pytest.approx(20.0)
+
+
+# ---------------------------------------------------------------- the classroom lab's answers
+
+def test_flags_tell_a_bounded_oscillation_from_a_drift_and_a_phase_error(client):
+    # Verlet at h = 0.2 s: the energy oscillates by about 2 % and does not grow (symplectic).
+    q = {"length": "3.5", "amplitude": "144deg", "step": "0.2", "t_max": "20", "method": "verlet"}
+    flags = client.get("/api/simulate", params=q).json()["flags"]
+    full = taylor.simulate(3.5, 0.8 * math.pi, 0.2, 20.0, method="verlet")
+    drift = np.abs(energy(full.theta, full.omega, 3.5) / 9.80665 + math.cos(0.8 * math.pi)) / (1 - math.cos(0.8 * math.pi))
+    quarter = len(drift) // 4
+    assert drift.max() > 0.01 and drift[-quarter:].max() < 1.5 * drift[:quarter].max()  # bounded, by the reference
+    assert flags["energy_drift_kind"] == "bounded" and flags["trustworthy"] and flags["warnings"] == []
+    assert [n["severity"] for n in flags["notes"]] == ["note"]
+    # Euler's method gains energy every swing: a secular drift, not the pendulum's motion.
+    q = {"length": "1", "amplitude": "30deg", "step": "1e-2", "t_max": "20", "method": "taylor:1"}
+    flags = client.get("/api/simulate", params=q).json()["flags"]
+    assert flags["energy_drift_kind"] == "secular" and flags["notes"][0]["severity"] == "wrong"
+    # taylor2 at h = 0.01 over 2000 s: the energy barely moves, the phase is radians off.
+    q = {"length": "3.5", "amplitude": "144deg", "step": "1e-2", "t_max": "2000"}
+    body = client.get("/api/simulate", params=q).json()
+    full = taylor.simulate(3.5, 0.8 * math.pi, 1e-2, 2000.0)
+    ref = np.max(np.abs(full.theta - exact_motion(3.5, 0.8 * math.pi, full.t).theta))
+    assert ref > 1 and body["flags"]["phase_error_max"] <= ref and body["flags"]["phase_error_max"] > 0.9 * ref
+    assert [n["kind"] for n in body["flags"]["notes"]] == ["phase"] and not body["flags"]["trustworthy"]
+
+
+def test_motion_is_the_exact_motion(client):
+    from scipy.integrate import solve_ivp
+
+    body = client.get("/api/motion", params={"length": "20", "amplitude": "120deg", "t_max": "30"}).json()
+    assert body["period"] == pytest.approx(ellipk_period(20, math.radians(120)), rel=1e-14)
+    f = body["frames"]
+    assert f["t"][0] == 0 and f["t"][-1] == 30 and f["per_period"] == pytest.approx(16, rel=0.1)
+    sol = solve_ivp(lambda t, z: [z[1], -9.80665 / 20 * math.sin(z[0])], (0, 30), [math.radians(120), 0.0],
+                    method="DOP853", rtol=1e-12, atol=1e-14, t_eval=f["t"])
+    assert np.allclose(f["theta"], sol.y[0], rtol=0, atol=1e-9) and np.allclose(f["omega"], sol.y[1], rtol=0, atol=1e-9)
+    assert client.get("/api/motion", params={"length": "0", "amplitude": "1"}).json()["error"]["field"] == "length"
+
+
+def test_period_curve_is_the_exact_ratio_and_the_formulas(client):
+    import mpmath
+
+    body = client.get("/api/period_curve").json()
+    assert body["amplitude_deg"] == list(range(180))
+    for deg in (1, 60, 179):
+        with mpmath.workdps(30):
+            ref = 2 * mpmath.ellipk(mpmath.sin(mpmath.radians(deg) / 2) ** 2) / mpmath.pi
+        assert body["exact_ratio"][deg] == pytest.approx(float(ref), rel=1e-13)
+    kf = next(a for a in body["approximations"] if a["name"] == "kidd-fogg")
+    assert kf["ratio"][100] == pytest.approx(1 / math.sqrt(math.cos(math.radians(50))), rel=1e-15)
+
+
+def test_csv_with_every_column(client):
+    q = {"length": "1", "amplitude": "pi/4", "step": "0.1", "t_max": "2.1", "columns": "all"}
+    lines = client.get("/api/trajectory.csv", params=q).text.splitlines()
+    assert lines[0].split(",") == ["t_s", "theta_rad", "omega_rad_per_s", "theta_exact_rad", "omega_exact_rad_per_s",
+                                   "theta_error_rad", "energy_error_mgl"]
+    full = taylor.simulate(1, math.pi / 4, 0.1, 2.1)
+    rows = np.array([[float(x) for x in line.split(",")] for line in lines[1:]])
+    assert np.array_equal(rows[:, 1], full.theta) and np.array_equal(rows[:, 2], full.omega)
+    assert np.array_equal(rows[:, 5], rows[:, 1] - rows[:, 3])
+    r = client.get("/api/trajectory.csv", params=q | {"columns": "some"})
+    assert r.status_code == 422 and r.json()["error"]["field"] == "columns"

@@ -4,16 +4,21 @@ Routes
 ------
 ``GET /``                     the explorer page (``static/index.html``)
 ``GET /static/{file}``        the page's own script and style
-``GET /vendor/plotly.min.js`` plotly.js, read at run time from the installed ``plotly`` package
+``GET /vendor/plotly.min.js`` plotly.js's "basic" bundle (scatter, bar, pie: the traces the page draws),
+                              shipped in ``static/`` with its MIT licence
 ``GET /api/config``           the methods of :mod:`pendulab.methods` now, g presets, limits
 ``GET /api/period``           exact (AGM) and small-angle periods
 ``GET /api/simulate``         what the page draws (min/max per column), exact motion, estimates, flags
 ``GET /api/convergence``      period estimates and their errors over a list of steps
+``GET /api/motion``           the exact motion alone (the page's second pendulum)
+``GET /api/period_curve``     T(alpha)/T0 from 0 to 179 deg, exact and by the classical approximations
 ``GET /api/trajectory.csv``   the trajectory as CSV, streamed block by block
 ``GET /api/docs``             the API's documentation (Swagger UI from ``swagger-ui-bundle``: offline)
 
 Every route answers ``HEAD`` as well; a request for any host but this computer (or the
 addresses ``pendulab serve`` was bound to) gets 400 (:mod:`pendulab.web.guard`).
+Every answer of 500 bytes or more is gzip-compressed when the client accepts it
+(starlette's ``GZipMiddleware``; plotly.js compressed once, at level 9).
 A bad or missing parameter gives status 422 and ``{"error": {"field", "value",
 "allowed", "message"}}``; no input crashes the server.
 
@@ -32,18 +37,20 @@ from __future__ import annotations
 
 import asyncio
 import contextlib
+import functools
+import gzip
 import logging
 import os
 import threading
 from collections.abc import AsyncIterator, Callable, Iterable
 from concurrent.futures import ThreadPoolExecutor
-from importlib import resources
 from pathlib import Path
 from typing import Annotated, Any
 
 import orjson
 from fastapi import FastAPI, Query, Request
 from fastapi.exceptions import RequestValidationError
+from fastapi.middleware.gzip import GZipMiddleware
 from fastapi.responses import FileResponse, HTMLResponse, JSONResponse, Response, StreamingResponse
 from starlette.exceptions import HTTPException as StarletteHTTPException
 
@@ -55,9 +62,15 @@ _log = logging.getLogger("pendulab.web")
 _PAGES = {"index.html": "text/html", "app.js": "text/javascript", "style.css": "text/css", "favicon.svg": "image/svg+xml"}
 
 
-def _plotly_js() -> Path:
-    """plotly.js as shipped inside the installed Python package (never copied into this repo)."""
-    return Path(str(resources.files("plotly") / "package_data" / "plotly.min.js"))
+#: plotly.js's partial bundle "basic" (npm ``plotly.js-basic-dist-min`` 4.1.1, MIT licence in
+#: ``static/plotly-basic.LICENSE.txt``): a quarter of the full bundle, every trace type the page uses.
+PLOTLY_JS = STATIC / "plotly-basic.min.js"
+
+
+@functools.cache
+def _plotly_gzip() -> bytes:
+    """plotly.js gzip-compressed at level 9, once (0.1 s): the middleware's level 6 costs that per request."""
+    return gzip.compress(PLOTLY_JS.read_bytes(), compresslevel=9, mtime=0)
 
 
 def _swagger_dir() -> Path:
@@ -157,6 +170,8 @@ Step = Annotated[str | None, Query(description="Step h > 0, s: 1e-3")]
 TMax = Annotated[str | None, Query(description="End time t_max > step, s: 20")]
 MethodName = Annotated[str | None, Query(description="Integrator: taylor2 (default), rk4, verlet, taylor:P (P in 1..30)")]
 Points = Annotated[str | None, Query(description="At most this many points returned (evenly thinned), 2..1000000")]
+Columns = Annotated[str | None, Query(description="CSV columns: state (t, theta, omega; default) or all "
+                                             "(also theta_exact, omega_exact, the global error, the energy error)")]
 Steps = Annotated[str | None, Query(description="Steps h, comma-separated, 1 to 40 (default 13 steps from 0.1 to 1e-4)")]
 
 
@@ -170,6 +185,8 @@ def create_app(allowed_hosts: Iterable[str] = guard.LOCAL_HOSTS) -> FastAPI:
     app = FastAPI(title="pendulab explorer", docs_url=None, redoc_url=None, openapi_url="/api/openapi.json")
     app.openapi_version = "3.0.3"
     app.add_middleware(guard.Guard, allowed_hosts=allowed_hosts)
+    # Compressed answers: the page's script and a simulation's JSON are mostly text and digits.
+    app.add_middleware(GZipMiddleware, minimum_size=500, compresslevel=6)
 
     @app.exception_handler(RequestValidationError)
     async def _validation(request: Request, exc: RequestValidationError) -> JSONResponse:
@@ -238,15 +255,26 @@ def create_app(allowed_hosts: Iterable[str] = guard.LOCAL_HOSTS) -> FastAPI:
         return await heavy(request, views.convergence_view, {"length": length, "amplitude": amplitude, "unit": unit, "g": g,
                                                   "method": method, "steps": steps})
 
+    @app.get("/api/motion", response_model=models.MotionAnswer, responses=bad)
+    async def motion(length: Length = None, amplitude: Amplitude = None, unit: Unit = None, g: Gravity = None,
+                     t_max: TMax = None) -> Response:
+        # At most 8000 Jacobi evaluations: milliseconds, on the event loop.
+        return light(views.motion_view, {"length": length, "amplitude": amplitude, "unit": unit, "g": g, "t_max": t_max})
+
+    @app.get("/api/period_curve", response_model=models.PeriodCurveAnswer)
+    async def period_curve() -> Response:
+        return JSONResponse(views.period_curve_view())
+
     csv: dict[int | str, dict[str, Any]] = {200: {"content": {"text/csv": {"schema": {"type": "string"}}},
-                 "description": "t_s,theta_rad,omega_rad_per_s: one row per kept step, full precision"}}
+                 "description": "t_s,theta_rad,omega_rad_per_s (columns=all: and theta_exact_rad, "
+                 "omega_exact_rad_per_s, theta_error_rad, energy_error_mgl): one row per kept step, full precision"}}
 
     @app.get("/api/trajectory.csv", response_class=StreamingResponse, responses=csv | bad)
     async def trajectory_csv(length: Length = None, amplitude: Amplitude = None, unit: Unit = None,
                              g: Gravity = None, step: Step = None, t_max: TMax = None, method: MethodName = None,
-                             points: Points = None) -> Response:
+                             points: Points = None, columns: Columns = None) -> Response:
         params = {"length": length, "amplitude": amplitude, "unit": unit, "g": g, "step": step, "t_max": t_max,
-                  "method": method, "points": points}
+                  "method": method, "points": points, "columns": columns}
         try:
             blocks, name = views.trajectory_csv(_given(params))
         except InputError as exc:
@@ -282,7 +310,10 @@ def create_app(allowed_hosts: Iterable[str] = guard.LOCAL_HOSTS) -> FastAPI:
         return Response(pages[name], media_type=_PAGES[name], headers={"Cache-Control": "no-cache"})
 
     @app.get("/vendor/plotly.min.js", include_in_schema=False)
-    async def plotly_js() -> Response:
-        return FileResponse(_plotly_js(), media_type="text/javascript", headers={"Cache-Control": "max-age=86400"})
+    async def plotly_js(request: Request) -> Response:
+        headers = {"Cache-Control": "max-age=86400", "Vary": "Accept-Encoding"}
+        if "gzip" in request.headers.get("accept-encoding", ""):  # compressed once, not per request
+            return Response(_plotly_gzip(), media_type="text/javascript", headers=headers | {"Content-Encoding": "gzip"})
+        return Response(PLOTLY_JS.read_bytes(), media_type="text/javascript", headers=headers)
 
     return app

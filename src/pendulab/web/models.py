@@ -134,13 +134,30 @@ class Frames(_Model):
     per_period: float | None
 
 
+class Note(_Model):
+    kind: Literal["blow-up", "over-the-top", "energy-drift", "energy-oscillation", "phase"]
+    severity: Literal["wrong", "warn", "note"] = Field(
+        description="wrong: not the pendulum's motion; warn: out of step with the exact motion; "
+                    "note: a bounded energy error, the swing still a pendulum's")
+    text: str
+
+
 class Flags(_Model):
     left_oscillation_t: float | None
     nonfinite_t: float | None
     energy_drift_max: float | None
     energy_drift_relative: float | None
+    energy_drift_kind: Literal["secular", "bounded"] | None = Field(
+        description="whether |E - E0| grows over the run or stays bounded (null: a run too short to tell, or over the top)")
+    phase_error_max: float | None = Field(description="max |theta_sim - theta_exact| over the error samples, rad")
     trustworthy: bool
-    warnings: list[str]
+    warnings: list[str] = Field(description="the texts of the notes of severity wrong or warn")
+    notes: list[Note]
+
+
+class State(_Model):
+    theta: Values
+    omega: Values
 
 
 class SimulateAnswer(_Model):
@@ -160,6 +177,8 @@ class SimulateAnswer(_Model):
     energy: Energy
     phase: Phase
     frames: Frames
+    exact_frames: State = Field(description="the exact motion's state at the frames' times")
+    exact_phase: State = Field(description="one period of the exact orbit in the phase plane")
     flags: Flags
     period: PeriodWithEstimate
 
@@ -177,6 +196,27 @@ class ConvergenceAnswer(_Model):
     order: int
     period: PeriodAnswer
     rows: list[ConvergenceRow]
+
+
+class MotionAnswer(PeriodAnswer):
+    """``GET /api/motion``: a pendulum's exact motion alone, its state 16 times a period."""
+
+    frames: Frames
+
+
+class Approximation(_Model):
+    name: str = Field(description="a key of pendulab.approximations.FORMULAS")
+    label: str
+    source: str
+    ratio: Values = Field(description="T_approx/T0 at each amplitude")
+
+
+class PeriodCurveAnswer(_Model):
+    """``GET /api/period_curve``: T(alpha)/T0 from 0 to 179 deg."""
+
+    amplitude_deg: list[float]
+    exact_ratio: list[float] = Field(description="the AGM period over 2 pi sqrt(l/g)")
+    approximations: list[Approximation]
 
 
 class ErrorDetail(_Model):

@@ -39,6 +39,7 @@ ALLOWED = {
     "t_max": "a finite number > 0 (s), such as 20",
     "g": f"a finite number > 0 (m/s^2), such as {G_TEXT}",
     "unit": "rad or deg: the unit of a plain-number amplitude",
+    "columns": "state (t, theta, omega) or all (also the exact motion, the global error and the energy error)",
 }
 
 #: 10^-1 .. 10^-4, four per decade: the range of problem 3(c) and a decade above.

@@ -10,6 +10,7 @@ directly as well as through the app.
 """
 from __future__ import annotations
 
+import functools
 import math
 import threading
 from collections.abc import Iterator, Mapping
@@ -18,18 +19,29 @@ from typing import Any
 import numpy as np
 
 from .. import inputs
-from ..cases import PROBLEM5
+from ..cases import PROBLEM5, G
 from ..errors import InputError, PendulabError
 from ..methods import resolve
 from . import limits, parameters, sampling
 from .sampling import Cancelled, finite_list
 
-__all__ = ["Cancelled", "config_view", "convergence_view", "period_endpoint", "simulate_view", "trajectory_csv", "warm"]
+__all__ = ["Cancelled", "config_view", "convergence_view", "motion_view", "period_curve_view", "period_endpoint",
+           "simulate_view", "trajectory_csv", "warm"]
 
 #: An energy drift above this fraction of the swing's energy is flagged.
 ENERGY_WARN = 0.01
+#: A simulation further than this from the exact motion (rad, about 6 deg) is flagged.
+PHASE_WARN = 0.1
 #: Rows computed per block of the streamed CSV.
 CSV_BLOCK = 8192
+#: Points of the exact orbit drawn in the phase portrait (one period).
+ORBIT_POINTS = 257
+#: The CSV's header for each choice of ``columns``: the state, or also what the page plots
+#: (the exact motion, the global error theta - theta_exact, the energy error (E - E0)/(m g l)).
+CSV_COLUMNS = {
+    "state": "t_s,theta_rad,omega_rad_per_s",
+    "all": "t_s,theta_rad,omega_rad_per_s,theta_exact_rad,omega_exact_rad_per_s,theta_error_rad,energy_error_mgl",
+}
 
 
 def _num(x: float) -> float | None:
@@ -90,32 +102,77 @@ def estimate_view(length: float, amplitude: float, step: float, g: float, method
     }
 
 
-def _flags(p: Mapping[str, Any], sim: Mapping[str, Any]) -> dict[str, Any]:
-    """What makes a simulation untrustworthy, as facts with their times, and one line each."""
+def _drift_kind(sim: Mapping[str, Any], h: float, t_end: float) -> str | None:
+    """``"secular"`` when the energy error grows over the run, ``"bounded"`` when it does not.
+
+    Compares the largest ``|E - E0|`` in the run's first and last windows of ``max(T, t_end/4)``:
+    a symplectic method (Verlet) keeps a bounded oscillation, the same in both; a method whose
+    error accumulates (Euler, Taylor, RK4) has more in the last. None for a run shorter than
+    two windows, where the two cannot be told apart.
+    """
+    window = max(sim["period"], t_end / 4)
+    if not 2 * window <= t_end or not len(sim["energy"]):
+        return None
+    t = h * np.asarray(sim["energy_idx"], dtype=float)
+    e = np.abs(np.asarray(sim["energy"], dtype=float))
+    early, late = e[t <= window], e[t >= t_end - window]
+    if not (len(early) and len(late)) or not (np.all(np.isfinite(early)) and np.all(np.isfinite(late))):
+        return None
+    return "secular" if np.max(late) > 1.5 * np.max(early) else "bounded"
+
+
+def _flags(p: Mapping[str, Any], sim: Mapping[str, Any], err_t: np.ndarray | None = None,
+           err: np.ndarray | None = None) -> dict[str, Any]:
+    """What makes a simulation untrustworthy, as facts with their times, and one line each.
+
+    ``notes``: every finding as ``{"kind", "severity", "text"}``; severity ``"wrong"`` (not
+    the pendulum's motion: blow-up, over the top, energy drift), ``"warn"`` (out of step with
+    the exact motion by more than :data:`PHASE_WARN`) or ``"note"`` (a bounded energy
+    oscillation: the motion stays a pendulum's). ``warnings``: the texts of the first two kinds.
+    """
     h, alpha = p["step"], p["amplitude"]
     swing = 1.0 - math.cos(alpha)  # the oscillation's energy, E(alpha) - E(0), in m g l
     left = sim["left"] * h if sim["left"] >= 0 else None
     bad = sim["bad"] * h if sim["bad"] >= 0 else None
     drift = sim["energy_max"]
     rel = drift / swing if swing > 0 and math.isfinite(drift) else None
-    warnings = []
+    # Once over the top (or blown up) the energy error says nothing more: no kind.
+    kind = _drift_kind(sim, h, sim["n"] * h) if rel is not None and bad is None and left is None else None
+    notes: list[dict[str, str]] = []
     if bad is not None:
-        warnings.append(f"the simulation blew up: theta or theta' is no longer a finite number from t = {bad:.6g} s")
+        notes.append({"kind": "blow-up", "severity": "wrong", "text":
+                      f"the simulation blew up: theta or theta' is no longer a finite number from t = {bad:.6g} s"})
     if left is not None:
-        warnings.append(
+        notes.append({"kind": "over-the-top", "severity": "wrong", "text": (
             f"the simulated pendulum went over the top (|theta| >= 180 deg) at t = {left:.6g} s, which the real one "
-            f"released at rest below 180 deg never does: step h = {h:g} s is too large for this method"
-        )
+            f"released at rest below 180 deg never does: step h = {h:g} s is too large for this method")})
     if rel is not None and rel > ENERGY_WARN and bad is None:
-        warnings.append(
-            f"the energy drifted by up to {100 * rel:.3g} % of the swing's energy m g l (1 - cos alpha): "
-            "the simulated motion is not the pendulum's; use a smaller step or another method"
-        )
+        if kind == "bounded":
+            notes.append({"kind": "energy-oscillation", "severity": "note", "text": (
+                f"the energy oscillates by up to {100 * rel:.3g} % of the swing's energy m g l (1 - cos alpha) "
+                "and does not grow: a bounded error (as a symplectic method's), the swing stays a pendulum's")})
+        else:
+            notes.append({"kind": "energy-drift", "severity": "wrong", "text": (
+                f"the energy drifted by up to {100 * rel:.3g} % of the swing's energy m g l (1 - cos alpha)"
+                + (", and keeps growing" if kind == "secular" else "")
+                + ": the simulated motion is not the pendulum's; use a smaller step or another method")})
+    phase = None
+    if err is not None and err_t is not None and len(err):
+        ok = np.isfinite(err)
+        phase = float(np.max(np.abs(err[ok]))) if ok.any() else None
+        if phase is not None and phase > PHASE_WARN and bad is None and left is None:
+            first = float(err_t[int(np.argmax(np.abs(np.where(ok, err, 0.0)) > PHASE_WARN))])
+            notes.append({"kind": "phase", "severity": "warn", "text": (
+                f"the simulation falls out of step with the exact motion: {phase:.3g} rad ({math.degrees(phase):.3g} deg) "
+                f"apart at most, more than {PHASE_WARN:g} rad from t = {first:.6g} s on")})
+    warnings = [n["text"] for n in notes if n["severity"] != "note"]
     return {
         "left_oscillation_t": left, "nonfinite_t": bad,
         "energy_drift_max": _num(drift) if drift == drift else None,
         "energy_drift_relative": _num(rel) if rel is not None else None,
-        "trustworthy": not warnings, "warnings": warnings,
+        "energy_drift_kind": kind,
+        "phase_error_max": phase,
+        "trustworthy": not warnings, "warnings": warnings, "notes": notes,
     }
 
 
@@ -126,7 +183,8 @@ def simulate_view(params: Mapping[str, str], stop: threading.Event | None = None
     time order (every step when they fit), so a plot of them reaches every extreme of the
     trajectory. ``phase``: the state about 256 times per period, whole orbits (``null``
     between them). ``frames``: the state 16 times per period (at most 8000) for the
-    animation. ``exact``: the exact motion with the same column rule; ``error``:
+    animation, ``exact_frames`` the exact state at the same times, ``exact_phase`` one
+    period of the exact orbit. ``exact``: the exact motion with the same column rule; ``error``:
     ``theta_sim - theta_exact`` 64 times per period (at most 20 000; min/max per column); ``energy``: the
     drift ``(E - E0)/(m g l)`` at every step, min/max per column. ``stop`` set while the
     simulation runs raises :class:`Cancelled`.
@@ -146,6 +204,9 @@ def simulate_view(params: Mapping[str, str], stop: threading.Event | None = None
     keep = sampling.minmax((e_idx * nb) // (n + 1), err, nb)
     ex_t, ex_th = sampling.exact_overlay(p["length"], p["amplitude"], p["g"], sim["period"], n * h, nb)
     ph_t = h * sim["phase_idx"]
+    ex_frames = exact_motion(p["length"], p["amplitude"], f_t, p["g"])
+    # One period of the exact orbit, a closed curve in the phase plane.
+    orbit = exact_motion(p["length"], p["amplitude"], np.linspace(0.0, sim["period"], ORBIT_POINTS), p["g"])
     return {
         "input": {k: p[k] for k in ("length", "amplitude", "step", "t_max", "g", "method")}
         | {"amplitude_deg": math.degrees(p["amplitude"])},
@@ -171,7 +232,9 @@ def simulate_view(params: Mapping[str, str], stop: threading.Event | None = None
             "t": f_t.tolist(), "theta": finite_list(sim["frame_theta"]), "omega": finite_list(sim["frame_omega"]),
             "per_period": sim["period"] / (h * (f_idx[1] - f_idx[0])) if len(f_idx) > 1 else None,
         },
-        "flags": _flags(p, sim),
+        "exact_frames": {"theta": finite_list(ex_frames.theta), "omega": finite_list(ex_frames.omega)},
+        "exact_phase": {"theta": finite_list(orbit.theta), "omega": finite_list(orbit.omega)},
+        "flags": _flags(p, sim, e_t, err),
         "period": period_view(p["length"], p["amplitude"], p["g"]) | est,
     }
 
@@ -184,6 +247,10 @@ def trajectory_csv(params: Mapping[str, str]) -> tuple[Iterator[str], str]:
     """
     p = parameters.simulation(params)
     points = parameters.points(params, limits.MAX_CSV_ROWS, limits.MAX_CSV_ROWS)
+    columns = parameters.text(params, "columns", "state").strip().lower()
+    if columns not in CSV_COLUMNS:
+        raise InputError("columns", inputs.shown(columns), parameters.ALLOWED["columns"])
+    p = dict(p) | {"columns": columns}
     name = f"pendulab_l{p['length']:g}_a{math.degrees(p['amplitude']):.6g}deg_h{p['step']:g}_{p['method']}.csv"
     return csv_blocks(p, points), name
 
@@ -197,23 +264,40 @@ def csv_blocks(p: Mapping[str, Any], points: int) -> Iterator[str]:
     idx = sampling.thin(n + 1, points)
     stride = int(idx[1] - idx[0]) if len(idx) > 1 else 1
     h, c = p["step"], -p["g"] / p["length"]
-    yield "t_s,theta_rad,omega_rad_per_s\n" + f"{0.0!r},{p['amplitude']!r},{0.0!r}\n"
+    full = p if p.get("columns", "state") == "all" else None
+    first = _csv_rows(p, np.zeros(1), np.array([p["amplitude"]]), np.zeros(1)) if full else f"{0.0!r},{p['amplitude']!r},{0.0!r}\n"
+    yield CSV_COLUMNS["all" if full else "state"] + "\n" + first
     state = (p["amplitude"], 0.0)
     i = 0
     while i < n:
         i1 = min(n, i + stride * CSV_BLOCK)
-        state, block = _csv_block(code, order, state, c, h, i, i1, stride, n)
+        state, block = _csv_block(code, order, state, c, h, i, i1, stride, n, full)
         i = i1
         yield block
 
 
+def _csv_rows(p: Mapping[str, Any], t: np.ndarray, theta: np.ndarray, omega: np.ndarray) -> str:
+    """Rows with the exact motion, the global error and the energy error beside the state."""
+    from ..motion import exact_motion
+
+    ex = exact_motion(p["length"], p["amplitude"], t, p["g"])
+    with np.errstate(invalid="ignore", over="ignore"):
+        drift = omega * omega * (p["length"] / (2 * p["g"])) - np.cos(theta) + math.cos(p["amplitude"])
+        err = theta - ex.theta
+    cols = [a.tolist() for a in (t, theta, omega, ex.theta, ex.omega, err, drift)]
+    return "".join(",".join(repr(x) for x in row) + "\n" for row in zip(*cols))
+
+
 def _csv_block(code: int, order: int, state: tuple[float, float], c: float, h: float,
-               i0: int, i1: int, stride: int, n: int) -> tuple[tuple[float, float], str]:
+               i0: int, i1: int, stride: int, n: int,
+               full: Mapping[str, Any] | None = None) -> tuple[tuple[float, float], str]:
     from ._view import advance
 
     size = (i1 - i0) // stride + 2
     z1, z2, ii = np.empty(size), np.empty(size), np.empty(size, dtype=np.int64)
     a, b, k = advance(code, order, state[0], state[1], c, h, i0, i1, stride, n, z1, z2, ii)
+    if full is not None:
+        return (a, b), _csv_rows(full, h * ii[:k], z1[:k], z2[:k])
     t = (h * ii[:k]).tolist()
     rows = "".join(f"{x!r},{y!r},{z!r}\n" for x, y, z in zip(t, z1[:k].tolist(), z2[:k].tolist()))
     return (a, b), rows
@@ -247,6 +331,54 @@ def convergence_view(params: Mapping[str, str], stop: threading.Event | None = N
         est = estimate_view(p["length"], p["amplitude"], h, p["g"], method.name)
         rows.append({"step": h} | est)
     return {"method": method.name, "order": method.order, "period": exact, "rows": rows}
+
+
+def motion_view(params: Mapping[str, str]) -> dict[str, Any]:
+    """``GET /api/motion``: the exact motion alone (no simulation), for the page's second pendulum.
+
+    The period view of the pendulum and ``frames``: ``theta`` and ``theta'`` of
+    :func:`pendulab.motion.exact_motion` at evenly spaced times from 0 to ``t_max``, 16 a
+    period where at most :data:`pendulab.web.sampling.FRAME_POINTS` fit (the page
+    interpolates between them).
+    """
+    from ..motion import exact_motion
+
+    p = parameters.pendulum(params)
+    t_max = parameters.positive(params, "t_max", parameters.DEFAULTS["t_max"])
+    view = period_view(p["length"], p["amplitude"], p["g"])
+    count = int(min(sampling.FRAME_POINTS, max(2.0, math.ceil(16 * t_max / view["period"]) + 1)))
+    t = np.linspace(0.0, t_max, count)
+    m = exact_motion(p["length"], p["amplitude"], t, p["g"])
+    return view | {"frames": {"t": t.tolist(), "theta": finite_list(m.theta), "omega": finite_list(m.omega),
+                              "per_period": view["period"] / (t[1] - t[0])}}
+
+
+#: The approximations the T(alpha)/T0 curve draws (keys of :data:`pendulab.approximations.FORMULAS`).
+CURVE_FORMULAS = ("small-angle", "coursework-9", "kidd-fogg", "lima-arun", "ganley")
+
+
+@functools.cache
+def period_curve_view() -> dict[str, Any]:
+    """``GET /api/period_curve``: ``T(alpha)/T0`` from 0 to 179 deg, exact and approximated.
+
+    ``exact_ratio``: the AGM period (7)-(8) over the small-angle one; each approximation's
+    ratio is its formula's (:mod:`pendulab.approximations`, with its source).
+    """
+    from ..approximations import FORMULAS
+    from ..period import agm_period, small_angle_period
+
+    deg = np.arange(0.0, 180.0)
+    alpha = np.radians(deg)
+    t0 = float(small_angle_period(1.0, G))
+    exact = [float(agm_period(1.0, float(a), G)) / t0 for a in alpha]
+    approx = []
+    for name in CURVE_FORMULAS:
+        f = FORMULAS[name]
+        with np.errstate(invalid="ignore", divide="ignore"):
+            ratio = np.broadcast_to(f.ratio(alpha), alpha.shape)
+        approx.append({"name": name, "label": f.label + (" (eq. 9)" if name == "coursework-9" else ""),
+                       "source": f.source, "ratio": finite_list(np.asarray(ratio, dtype=float))})
+    return {"amplitude_deg": deg.tolist(), "exact_ratio": exact, "approximations": approx}
 
 
 def config_view() -> dict[str, Any]:

@@ -1,28 +1,36 @@
 // pendulab explorer: the page reads its state from the URL, asks the JSON API, and draws.
-// It computes nothing about the pendulum itself: every number shown comes from /api/.
-// Between two of the server's animation samples the bob's angle is the cubic Hermite
-// interpolant of theta and theta' there (drawing only; the server sends 16 samples a period).
+// Every number about the pendulum comes from /api/; the page only draws it. Between two of
+// the server's animation samples the bob's angle is the cubic Hermite interpolant of theta
+// and theta' there (drawing only; the server sends 16 samples a period). The photogate times
+// the animation as a stopwatch would: the times at which the drawn bob crosses the bottom.
 "use strict";
 
-const FIELDS = ["length", "amplitude", "unit", "g", "method", "step", "t_max", "method2", "step2"];
-const NUMBER_FIELDS = ["length", "amplitude", "g", "step", "t_max", "step2"];
+const FIELDS = ["length", "amplitude", "unit", "g", "method", "step", "t_max", "method2", "step2", "length2", "amplitude2", "g2"];
+const NUMBER_FIELDS = ["length", "amplitude", "g", "step", "t_max", "step2", "length2", "amplitude2", "g2"];
+const ERROR_FIELDS = NUMBER_FIELDS.concat(["method", "method2"]);
+const OPTIONAL = ["method2", "step2", "length2", "amplitude2", "g2"];  // in the URL only when set
 const PLOT_POINTS = 3000;          // theta(t): min and max of 1500 columns (more than a plot's pixels)
 const MAX_PERIOD_MARKS = 12;       // dashed kT lines on theta(t), beyond which none are drawn
 const SPEEDS = [0.1, 0.25, 0.5, 1, 2, 4];
-const FONT = { family: "system-ui, -apple-system, Segoe UI, Roboto, DejaVu Sans, sans-serif", size: 12, color: "#1d2330" };
-const COLORS = { a: "#2f6fdb", b: "#e07a1f", p: "#d1495b", bracket: "#8a94a6", linear: "#e69f00", cubic: "#009e73", exact: "#1d2330", cursor: "#d1495b" };
+const FONT = { family: "system-ui, -apple-system, Segoe UI, Roboto, DejaVu Sans, sans-serif", size: 14, color: "#1d2330" };
+const COLORS = { a: "#2f6fdb", b: "#e07a1f", second: "#7a5cc9", p: "#d1495b", bracket: "#8a94a6", linear: "#b07d00", cubic: "#009e73", exact: "#1d2330", cursor: "#d1495b" };
 const PLAIN_NUMBER = /^[+-]?(\d+\.?\d*|\.\d+)([eE][+-]?\d+)?$/;
 // Sliders beside the number fields: whether each moves log10 of the value (range in index.html).
 const SLIDERS = { length: { log: true }, g: { log: true }, step: { log: true }, t_max: { log: true }, amplitude: { log: false } };
+// A touch screen: a swipe over a plot scrolls the page; zoom only from the mode bar's button.
+const TOUCH = window.matchMedia("(pointer: coarse)").matches || navigator.maxTouchPoints > 0;
+const REDUCED_MOTION = window.matchMedia("(prefers-reduced-motion: reduce)").matches;
 
 const $ = (id) => document.getElementById(id);
 let config = null;
 let state = {};
-let view = { exact: true, scale: false };
-let sims = { a: null, b: null };  // the last good /api/simulate answers
-let seq = 0;                        // drops answers to requests that are no longer current
+let view = { exact: true, scale: false, errlog: false, second: false, side: 1 };
+let sims = { a: null, b: null, second: null };  // the last good answers
+let curve = null;                                 // /api/period_curve, asked once
+let seq = 0;                                      // drops answers to requests that are no longer current
 let timer = null;
 const anim = { playing: true, t: 0, last: null, speed: 1, marks: 0, drag: null };
+const gate = { prev: null, passes: [], period: null };
 
 // ---------- state <-> URL <-> form ----------
 function readURL() {
@@ -32,7 +40,11 @@ function readURL() {
   anim.speed = SPEEDS.includes(speed) ? speed : 1;
   view.exact = q.get("exact") !== "0";
   view.scale = q.get("scale") === "1";
-  anim.playing = q.get("paused") !== "1";
+  view.errlog = q.get("errlog") === "1";
+  view.second = q.get("second") === "1";
+  view.side = q.get("side") === "left" ? -1 : 1;
+  // prefers-reduced-motion: nothing moves until the person presses Play (or the link says so).
+  anim.playing = q.has("paused") ? q.get("paused") !== "1" : !REDUCED_MOTION;
   const t = Number(q.get("t"));
   anim.t = Number.isFinite(t) && t > 0 ? t : 0;
 }
@@ -50,8 +62,8 @@ function writeForm() {
   ensureOption($("method2"), state.method2);
   for (const k of FIELDS) $(k).value = state[k];
   $("speed").value = String(anim.speed);
-  $("exact").checked = view.exact;
-  $("scale").checked = view.scale;
+  for (const k of ["exact", "scale", "errlog", "second"]) $(k).checked = view[k];
+  $("second-fields").hidden = !view.second;
   $("play").textContent = anim.playing ? "Pause" : "Play";
   markPreset();
   for (const k of Object.keys(SLIDERS)) syncSlider(k);
@@ -59,16 +71,21 @@ function writeForm() {
 
 function readForm() {
   for (const k of FIELDS) state[k] = $(k).value.trim();
-  view.exact = $("exact").checked;
-  view.scale = $("scale").checked;
+  for (const k of ["exact", "scale", "errlog", "second"]) view[k] = $(k).checked;
 }
 
 function pageQuery() {
   const q = new URLSearchParams();
-  for (const k of FIELDS) if (state[k] !== "" || !["method2", "step2"].includes(k)) q.set(k, state[k]);
+  for (const k of FIELDS) {
+    if (["length2", "amplitude2", "g2"].includes(k) && !view.second) continue;
+    if (state[k] !== "" || !OPTIONAL.includes(k)) q.set(k, state[k]);
+  }
   if (anim.speed !== 1) q.set("speed", String(anim.speed));
   if (!view.exact) q.set("exact", "0");
   if (view.scale) q.set("scale", "1");
+  if (view.errlog) q.set("errlog", "1");
+  if (view.second) q.set("second", "1");
+  if (view.side < 0) q.set("side", "left");
   if (!anim.playing) { q.set("paused", "1"); q.set("t", String(Number(anim.t.toPrecision(6)))); }
   return q.toString();
 }
@@ -90,8 +107,16 @@ function apiQuery(which, extra = {}) {
   }).toString();
 }
 
+function secondQuery() {
+  // The second pendulum: its own length, amplitude (in the first one's unit) and g; empty ones are the first's.
+  return new URLSearchParams({
+    length: state.length2 || state.length, amplitude: state.amplitude2 || state.amplitude, unit: state.unit,
+    g: state.g2 || state.g, t_max: state.t_max,
+  }).toString();
+}
+
 // ---------- talking to the API ----------
-function schedule(delay = 250) {
+function schedule(delay = 200) {
   clearTimeout(timer);
   timer = setTimeout(update, delay);
 }
@@ -103,6 +128,12 @@ async function getJSON(url) {
   return { ok: r.ok, body };
 }
 
+/** An error of a request about another field set (the comparison, the second pendulum), on its own field. */
+function renamed(err, names, prefix) {
+  const e = err || {};
+  return { ...e, field: names[e.field] || e.field, message: prefix + (e.message || "unknown error") };
+}
+
 async function update() {
   readForm();
   writeURL();
@@ -111,12 +142,14 @@ async function update() {
   const amplitudeQuery = apiAmplitude();
   $("status").textContent = "Simulating…";
   document.body.classList.add("busy");
-  let ra, rb = null;
+  let ra, rb = null, rs = null;
   try {
     const pa = getJSON("/api/simulate?" + apiQuery("a", { points: PLOT_POINTS }));
     const pb = state.method2 ? getJSON("/api/simulate?" + apiQuery("b", { points: PLOT_POINTS })) : null;
+    const ps = view.second ? getJSON("/api/motion?" + secondQuery()) : null;
     ra = await pa;
     rb = pb ? await pb : null;
+    rs = ps ? await ps : null;
   } catch (e) {
     if (my === seq) showError({ message: "the pendulab server does not answer: is `pendulab serve` still running?" });
     return;
@@ -124,70 +157,100 @@ async function update() {
   if (my !== seq) return;
   document.body.classList.remove("busy");
   if (!ra.ok) { showError(ra.body.error); return; }
-  if (rb && !rb.ok) {
-    const e = rb.body.error || {};
-    showError({ ...e, field: { step: "step2", method: "method2" }[e.field] || e.field, message: "second method: " + e.message });
+  if (rb && !rb.ok) { showError(renamed(rb.body.error, { step: "step2", method: "method2" }, "second method: ")); return; }
+  if (rs && !rs.ok) {
+    const names = state.length2 || state.amplitude2 || state.g2 ? { length: "length2", amplitude: "amplitude2", g: "g2" } : {};
+    showError(renamed(rs.body.error, names, "second pendulum: "));
     return;
   }
   clearError();
-  sims = { a: ra.body, b: rb ? rb.body : null };
+  sims = { a: ra.body, b: rb ? rb.body : null, second: rs ? rs.body : null };
   sims.a.amplitudeQuery = amplitudeQuery;
-  $("csv").href = "/api/trajectory.csv?" + apiQuery("a");
+  $("csv").href = "/api/trajectory.csv?" + apiQuery("a", { columns: "all" });
   $("csv").setAttribute("aria-disabled", "false");
+  $("csv2").hidden = !sims.b;
+  if (sims.b) $("csv2").href = "/api/trajectory.csv?" + apiQuery("b", { columns: "all" });
   const s = sims.a;
   const thinned = s.thinning === "none" ? "every step plotted" : `θ(t): min and max of each of ${s.columns} columns`;
   $("status").textContent = `${s.n_steps.toLocaleString("en")} steps of ${s.input.method}; ${thinned}.`;
   const tEnd = s.frames.t[s.frames.t.length - 1];
   if (anim.t > tEnd) anim.t = 0;
   $("cursor").max = String(tEnd);
+  resetGate();
   renderFlags();
   renderPeriods();
+  tick();
+  renderAnimNote();
+  // The plots after the numbers and the swing: the period is on the page before plotly starts.
+  await nextFrame();
+  if (my !== seq) return;
   renderTheta();
   renderPhase();
   renderError();
   renderEnergy();
   renderEstimates();
-  renderAnimNote();
-  draw();
-  updateCursor(true);
+  renderRatio();
   updateConvergence(my);
 }
 
+const nextFrame = () => new Promise((resolve) => requestAnimationFrame(() => resolve()));
+
 async function updateConvergence(my) {
-  const s = sims.a;
-  const T = s.period.period;
-  // Steps from T/30 down to T/30000, four per decade, plus the step in use.
+  const T = sims.a.period.period;
+  // Steps from T/30 down to T/30000, four per decade, plus the steps in use.
   const steps = [];
   for (let k = 0; k <= 12; k++) steps.push(T / Math.pow(10, 1.5 + k / 4));
-  steps.push(s.input.step);
-  const q = new URLSearchParams({
-    length: state.length, amplitude: state.amplitude, unit: state.unit, g: state.g, method: state.method,
-    steps: steps.map((h) => h.toPrecision(6)).join(","),
-  });
-  let res;
-  try { res = await getJSON("/api/convergence?" + q.toString()); } catch (e) { return; }
+  const ask = (method, h) => getJSON("/api/convergence?" + new URLSearchParams({
+    length: state.length, amplitude: state.amplitude, unit: state.unit, g: state.g, method,
+    steps: steps.concat([h]).map((x) => x.toPrecision(6)).join(","),
+  }).toString());
+  let ra, rb = null;
+  try {
+    const pa = ask(state.method, sims.a.input.step);
+    const pb = sims.b ? ask(state.method2, sims.b.input.step) : null;
+    ra = await pa;
+    rb = pb ? await pb : null;
+  } catch (e) { return; }
   if (my !== seq) return;
-  renderConvergence(res.ok ? res.body : null, res.ok ? null : res.body.error);
+  renderConvergence(ra.ok ? ra.body : null, ra.ok ? null : ra.body.error, rb && rb.ok ? rb.body : null);
+}
+
+function clearFieldErrors() {
+  for (const k of ERROR_FIELDS) {
+    $(k).removeAttribute("aria-invalid");
+    const hint = $(k).dataset.hint;
+    if (hint) $(k).setAttribute("aria-describedby", hint); else $(k).removeAttribute("aria-describedby");
+    $(k + "-error").hidden = true;
+    $(k + "-error").textContent = "";
+  }
+  $("error").hidden = true;
 }
 
 function showError(err) {
   document.body.classList.remove("busy");
-  for (const k of NUMBER_FIELDS.concat(["method", "method2"])) $(k).classList.remove("invalid");
-  if (err && err.field && $(err.field)) $(err.field).classList.add("invalid");
-  const e = $("error");
-  e.textContent = err && err.message ? err.message : "unknown error";
-  e.hidden = false;
-  $("status").textContent = "Results below are from the last valid input.";
-  $("results").classList.add("stale");
-  $("results").setAttribute("aria-disabled", "true");
+  clearFieldErrors();
+  let message = err && err.message ? err.message : "unknown error";
+  const field = err && err.field && ERROR_FIELDS.includes(err.field) ? err.field : null;
+  if (field && /^\s*[+-]?\d+,\d+\s*$/.test($(field).value)) message += ` (write a decimal point: ${$(field).value.trim().replace(",", ".")})`;
+  if (field) {
+    // The message right under its field, and announced with it.
+    const input = $(field), box = $(field + "-error");
+    box.textContent = message;
+    box.hidden = false;
+    input.setAttribute("aria-invalid", "true");
+    input.setAttribute("aria-describedby", [field + "-error", input.dataset.hint].filter(Boolean).join(" "));
+  } else {
+    $("error").textContent = message;
+    $("error").hidden = false;
+  }
+  $("status").textContent = "Results shown are from the last valid input.";
+  $("main").classList.add("stale");
   $("csv").setAttribute("aria-disabled", "true");
 }
 
 function clearError() {
-  for (const k of NUMBER_FIELDS.concat(["method", "method2"])) $(k).classList.remove("invalid");
-  $("error").hidden = true;
-  $("results").classList.remove("stale");
-  $("results").removeAttribute("aria-disabled");
+  clearFieldErrors();
+  $("main").classList.remove("stale");
 }
 
 // ---------- numbers ----------
@@ -195,23 +258,28 @@ const fix = (x, d = 12) => (x === null || x === undefined ? "–" : x.toPrecisio
 const sci = (x) => (x === null || x === undefined ? "–" : x === 0 ? "0" : x.toExponential(2));
 const short = (x) => String(Number(x.toPrecision(12)));
 const label = (s) => `${s.input.method}, h = ${short(s.input.step)} s`;
+const FLAG_WORDS = { wrong: "Not the pendulum's motion", warn: "Out of step with the exact motion", note: "Bounded energy error" };
 
 function renderFlags() {
+  // At the top of the results (the first thing on a phone): what is wrong, in words.
   const box = $("flags");
   box.textContent = "";
-  const all = [];
+  let n = 0;
   for (const k of ["a", "b"]) {
     const s = sims[k];
-    if (s) for (const w of s.flags.warnings) all.push([label(s), w]);
+    if (!s) continue;
+    for (const f of s.flags.notes) {
+      const p = document.createElement("p");
+      p.className = f.severity;
+      p.dataset.kind = f.kind;
+      const b = document.createElement("b");
+      b.textContent = `${FLAG_WORDS[f.severity]} (${label(s)}): `;
+      p.append(b, document.createTextNode(f.text + "."));
+      box.append(p);
+      n++;
+    }
   }
-  box.hidden = all.length === 0;
-  for (const [who, w] of all) {
-    const p = document.createElement("p");
-    const b = document.createElement("b");
-    b.textContent = "Not the pendulum's motion (" + who + "): ";
-    p.append(b, document.createTextNode(w + "."));
-    box.append(p);
-  }
+  box.hidden = n === 0;
 }
 
 function tableFor(s, suffix) {
@@ -257,6 +325,11 @@ function renderPeriods() {
   const p = sims.a.period;
   $("period-exact").textContent = fix(p.period);
   $("period-small").textContent = fix(p.small_angle);
+  $("period2-line").hidden = !sims.second;
+  if (sims.second) {
+    $("period2-exact").textContent = fix(sims.second.period);
+    $("period2-alpha").textContent = short(sims.second.amplitude_deg);
+  }
   const box = $("tables");
   box.textContent = "";
   box.append(tableFor(sims.a, ""));
@@ -265,23 +338,45 @@ function renderPeriods() {
 
 // ---------- plots ----------
 function plotConfig() {
-  // On a narrow screen the toolbar would cover the title: none there (pinch and drag still zoom).
-  return { displaylogo: false, responsive: true, displayModeBar: window.innerWidth >= 700 ? "hover" : false,
-    modeBarButtonsToRemove: ["lasso2d", "select2d"] };
+  // No cloud buttons, no logo; on a touch screen the bar stays shown (its zoom button is the
+  // only way to zoom) and a swipe scrolls the page.
+  return {
+    displaylogo: false, showSendToCloud: false, showEditInChartStudio: false, showLink: false,
+    responsive: true, scrollZoom: false, displayModeBar: TOUCH ? true : "hover",
+    modeBarButtonsToRemove: ["lasso2d", "select2d", "sendDataToCloud", "editInChartStudio"],
+  };
 }
 
-// The mode bar (on hover, at the top right) shares the top row with the title, which starts
-// at the left: on a narrow plot or with a long title the bar would cover the title's end.
-// There the title moves down below the bar, and the plot area with it by as much.
+// The mode bar (at the top right) shares the top row with the title, which starts at the
+// left: on a narrow plot or with a long title the bar would cover the title's end. There the
+// title moves down below the bar, and the plot area with it by as much.
 const TITLE_GAP = 3;
 
 function plot(id, traces, lay) {
-  return Plotly.react(id, traces, lay, plotConfig()).then(() => clearModeBar($(id)));
+  const gd = $(id);
+  return Plotly.react(id, traces, lay, plotConfig()).then(() => fitTitle(gd)).then(() => clearModeBar(gd)).then(() => {
+    if (!gd.dataset.hooked) {  // the cursor's place follows every redraw (zoom, resize)
+      gd.dataset.hooked = "1";
+      gd.on("plotly_afterplot", () => { measure(gd); moveCursors(); });
+    }
+    measure(gd);
+    moveCursors();
+  });
+}
+
+function fitTitle(gd) {
+  // A title wider than its plot (a long run's, on a narrow screen) is set smaller, down to 12 px.
+  const title = gd.querySelector(".gtitle");
+  if (!title) return;
+  const t = title.getBoundingClientRect(), g = gd.getBoundingClientRect();
+  const room = g.right - 8 - t.left, size = gd._fullLayout.title.font.size;
+  if (t.width <= room || size <= 12) return;
+  return Plotly.relayout(gd, { "title.font.size": Math.max(12, Math.floor(size * room / t.width)) });
 }
 
 function clearModeBar(gd) {
   const title = gd.querySelector(".gtitle"), bar = gd.querySelector(".modebar");
-  if (!title || !bar || !bar.getBoundingClientRect().width) return;  // no bar (a narrow screen)
+  if (!title || !bar || !bar.getBoundingClientRect().width) return;  // no bar (hidden until hover)
   const t = title.getBoundingClientRect(), b = bar.getBoundingClientRect();
   if (t.right < b.left - TITLE_GAP || t.top >= b.bottom) return;  // beside it or below it already
   const shift = b.bottom + TITLE_GAP - t.top;
@@ -294,33 +389,30 @@ function clearModeBar(gd) {
 
 function layout(title, xtitle, ytitle, extra = {}) {
   return {
-    title: { text: title, font: { size: 13 }, x: 0.01, xanchor: "left", y: 0.97, yanchor: "top" },
-    font: FONT, margin: { l: 62, r: 12, t: 44, b: 46 }, paper_bgcolor: "#fff", plot_bgcolor: "#fff",
-    xaxis: { title: { text: xtitle }, gridcolor: "#eef1f5", zerolinecolor: "#c9d0dc", automargin: true },
-    yaxis: { title: { text: ytitle }, gridcolor: "#eef1f5", zerolinecolor: "#c9d0dc", automargin: true, exponentformat: "e" },
-    legend: { orientation: "h", x: 0, y: -0.3, yanchor: "top", font: { size: 11 } }, showlegend: false, ...extra,
+    title: { text: title, font: { size: 15 }, x: 0.01, xanchor: "left", y: 0.97, yanchor: "top" },
+    font: FONT, margin: { l: 70, r: 14, t: 46, b: 52 }, paper_bgcolor: "#fff", plot_bgcolor: "#fff",
+    dragmode: TOUCH ? false : "zoom", hovermode: TOUCH ? false : "closest",
+    xaxis: { title: { text: xtitle }, gridcolor: "#eef1f5", zerolinecolor: "#c9d0dc", automargin: true, tickfont: { size: 13 } },
+    yaxis: { title: { text: ytitle }, gridcolor: "#eef1f5", zerolinecolor: "#c9d0dc", automargin: true, exponentformat: "e", tickfont: { size: 13 } },
+    legend: { orientation: "h", x: 0, y: -0.3, yanchor: "top", font: { size: 13 } }, showlegend: false, ...extra,
   };
 }
 
-function cursorShape(t) {
-  return { type: "line", x0: t, x1: t, yref: "paper", y0: 0, y1: 1, line: { color: COLORS.cursor, width: 1.5 } };
-}
-
-function twoMethods(traces) {
+function twoLines(traces) {
   // A legend only when there is something to tell apart, below the plot.
-  return traces.length > 1 ? { showlegend: true, margin: { l: 62, r: 12, t: 44, b: 96 } } : {};
+  return traces.length > 1 ? { showlegend: true, margin: { l: 70, r: 14, t: 46, b: 110 } } : {};
 }
 
 function renderTheta() {
   const s = sims.a;
   const T = s.period.period;
-  const shapes = [cursorShape(anim.t)];
+  const shapes = [];
   const annotations = [];
   const marks = Math.floor(s.input.t_max / T);
   if (marks <= MAX_PERIOD_MARKS) {
     for (let k = 1; k <= marks; k++) {
       shapes.push({ type: "line", x0: k * T, x1: k * T, yref: "paper", y0: 0, y1: 1, line: { dash: "dot", color: COLORS.p, width: 1 } });
-      annotations.push({ x: k * T, yref: "paper", y: 1, text: k === 1 ? "T" : `${k}T`, showarrow: false, yanchor: "bottom", font: { color: COLORS.p, size: 11 } });
+      annotations.push({ x: k * T, yref: "paper", y: 1, text: k === 1 ? "T" : `${k}T`, showarrow: false, yanchor: "bottom", font: { color: COLORS.p, size: 12 } });
     }
   }
   anim.marks = marks <= MAX_PERIOD_MARKS ? marks : 0;
@@ -335,7 +427,7 @@ function renderTheta() {
       hovertemplate: "t = %{x:.4f} s<br>θ = %{y:.6f} rad<extra></extra>" });
   }
   const title = marks <= MAX_PERIOD_MARKS ? "Angle θ(t)" : `Angle θ(t): ${marks.toLocaleString("en")} periods of T = ${T.toPrecision(6)} s`;
-  plot("plot-theta", traces, layout(title, "t (s)", "θ (rad)", { shapes, annotations, ...twoMethods(traces) }));
+  plot("plot-theta", traces, layout(title, "t (s)", "θ (rad)", { shapes, annotations, ...twoLines(traces) }));
 }
 
 function renderPhase() {
@@ -343,25 +435,26 @@ function renderPhase() {
   const a = s.input.amplitude;
   // On a second line: a legend entry wider than the plot is cut off at its right (a phone, 1024 px).
   const orbits = (x) => (x.phase.orbits > 1 ? `<br>${x.phase.orbits} one-period stretches, 0 to ${short(x.phase.t_last)} s` : "");
-  const traces = [
-    { x: s.phase.theta, y: s.phase.omega, mode: "lines", connectgaps: false, line: { color: COLORS.a, width: 1.6 },
-      name: label(s) + orbits(s), hovertemplate: "θ = %{x:.5f} rad<br>θ′ = %{y:.5f} rad/s<extra></extra>" },
-  ];
+  const traces = [];
+  traces.push({ x: s.phase.theta, y: s.phase.omega, mode: "lines", connectgaps: false, line: { color: COLORS.a, width: 1.6 },
+    name: label(s) + orbits(s), hovertemplate: "θ = %{x:.5f} rad<br>θ′ = %{y:.5f} rad/s<extra></extra>" });
   if (sims.b) {
     traces.push({ x: sims.b.phase.theta, y: sims.b.phase.omega, mode: "lines", connectgaps: false, line: { color: COLORS.b, width: 1.4 },
       name: label(sims.b) + orbits(sims.b), hovertemplate: "θ = %{x:.5f} rad<br>θ′ = %{y:.5f} rad/s<extra></extra>" });
   }
+  if (view.exact && s.exact_phase) {
+    // The exact orbit over the simulated one: the closed curve the simulation should stay on.
+    traces.push({ x: s.exact_phase.theta, y: s.exact_phase.omega, mode: "lines", line: { color: COLORS.exact, width: 1.2, dash: "dash" },
+      name: "exact orbit", hovertemplate: "exact<br>θ = %{x:.5f} rad<br>θ′ = %{y:.5f} rad/s<extra></extra>" });
+  }
+  const lines = traces.length;
   traces.push({ x: [a], y: [0], mode: "markers", marker: { symbol: "circle-open", size: 16, line: { width: 2.5, color: COLORS.p } },
     name: "P = (α, 0)", showlegend: false, hovertemplate: "P = (α, 0)<br>α = %{x:.6f} rad<extra></extra>" });
-  const st = stateAt(s.frames, anim.t);
-  traces.push({ x: [st ? st.theta : null], y: [st ? st.omega : null], mode: "markers", marker: { color: COLORS.cursor, size: 9 },
-    name: "now", showlegend: false, hoverinfo: "skip" });
-  anim.phaseCursor = traces.length - 1;
   // One method has no legend: the title says which stretch of time the sampled orbits span.
-  const title = s.phase.orbits > 1 ? `Phase portrait: ${s.phase.orbits} periods sampled, 0 to ${short(s.phase.t_last)} s` : "Phase portrait (θ, θ′)";
+  const title = s.phase.orbits > 1 ? `Phase portrait: ${s.phase.orbits} periods, 0 to ${short(s.phase.t_last)} s` : "Phase portrait (θ, θ′)";
   plot("plot-phase", traces, layout(title, "θ (rad)", "θ′ (rad/s)", {
     annotations: [{ x: a, y: 0, text: "P", showarrow: true, arrowhead: 0, ax: 22, ay: -22, font: { color: COLORS.p } }],
-    ...twoMethods(traces.slice(0, -2)),
+    ...twoLines(traces.slice(0, lines)),
   }));
 }
 
@@ -373,46 +466,61 @@ function methodLines(xOf, yOf, hovertemplate) {
 }
 
 function renderError() {
-  const traces = methodLines((s) => s.error.t, (s) => s.error.theta, "t = %{x:.4f} s<br>θ − θ_exact = %{y:.3e} rad<extra></extra>");
+  const log = view.errlog;
+  // On a log scale |error|: one diverging method no longer flattens the others.
+  const y = (s) => (log ? s.error.theta.map((v) => (v === null || v === 0 ? null : Math.abs(v))) : s.error.theta);
+  const traces = methodLines((s) => s.error.t, y, log ? "t = %{x:.4f} s<br>|θ − θ_exact| = %{y:.3e} rad<extra></extra>"
+    : "t = %{x:.4f} s<br>θ − θ_exact = %{y:.3e} rad<extra></extra>");
   const per = sims.a.error.per_period;
-  plot("plot-error", traces, layout("Global error θ_sim − θ_exact", `t (s): ${per.toPrecision(3)} samples a period`, "error (rad)", {
-    shapes: [cursorShape(anim.t)], ...twoMethods(traces),
-  }));
+  const extra = log ? { yaxis: { type: "log", title: { text: "|error| (rad)" }, gridcolor: "#eef1f5", exponentformat: "power", automargin: true, tickfont: { size: 13 } } } : {};
+  plot("plot-error", traces, layout(log ? "Global error |θ_sim − θ_exact|" : "Global error θ_sim − θ_exact",
+    `t (s): ${per.toPrecision(3)} samples a period`, "error (rad)", { ...extra, ...twoLines(traces) }));
 }
 
 function renderEnergy() {
   const traces = methodLines((s) => s.energy.t, (s) => s.energy.drift, "t = %{x:.4f} s<br>(E − E₀)/(mgl) = %{y:.3e}<extra></extra>");
-  plot("plot-energy", traces, layout("Energy drift (E − E₀)/(m g l)", "t (s)", "drift", {
-    shapes: [cursorShape(anim.t)], ...twoMethods(traces),
-  }));
+  plot("plot-energy", traces, layout("Energy error (E − E₀)/(m g l)", "t (s)", "drift", twoLines(traces)));
 }
 
 function renderEstimates() {
-  const p = sims.a.period;
-  const e = p.estimate;
-  const T = p.period;
-  if (!e) {
+  // Each method's three estimates minus the exact period: three places on the axis, the
+  // second method's markers (open, orange) just right of the first's.
+  const T = sims.a.period.period;
+  const traces = [];
+  const two = !!(sims.b && sims.b.period.estimate);
+  for (const [k, dx, faint] of [["a", two ? -0.12 : 0, false], ["b", 0.12, true]]) {
+    const s = sims[k];
+    const e = s ? s.period.estimate : null;
+    if (!e) continue;
+    const half = (e.bracket[1] - e.bracket[0]) / 2;
+    const open = faint ? "-open" : "";
+    const color = (c) => (faint ? COLORS.b : c);
+    traces.push(
+      { x: [dx], y: [e.bracket_mid - T], mode: "markers", name: `${s.input.method} bracket`, marker: { color: color(COLORS.bracket), size: 9, symbol: "line-ew-open" },
+        error_y: { type: "data", array: [half], color: color(COLORS.bracket), thickness: 2, width: 8 }, hovertemplate: `${s.input.method} bracket [${e.bracket[0]}, ${e.bracket[1]}] s<extra></extra>` },
+      { x: [1 + dx], y: [e.linear - T], mode: "markers", name: `${s.input.method} linear`, marker: { color: color(COLORS.linear), size: 11, symbol: "circle" + open, line: { width: 2, color: color(COLORS.linear) } },
+        hovertemplate: `${s.input.method} linear ${e.linear} s<br>error %{y:.3e} s<extra></extra>` },
+      { x: [2 + dx], y: [e.cubic - T], mode: "markers", name: `${s.input.method} cubic`, marker: { color: color(COLORS.cubic), size: 11, symbol: "diamond" + open, line: { width: 2, color: color(COLORS.cubic) } },
+        error_y: { type: "data", array: [Math.abs(e.cubic_error_estimate || 0)], color: color(COLORS.cubic) }, hovertemplate: `${s.input.method} cubic ${e.cubic} s<br>error %{y:.3e} s<extra></extra>` },
+    );
+  }
+  if (!traces.length) {
     plot("plot-estimates", [], layout("Period estimates − exact T", "", "estimate − T (s)", {
       annotations: [{ text: "no period from this simulation", showarrow: false, xref: "paper", yref: "paper", x: 0.5, y: 0.5 }],
       xaxis: { visible: false }, yaxis: { visible: false },
     }));
     return;
   }
-  const half = (e.bracket[1] - e.bracket[0]) / 2;
-  const traces = [
-    { x: ["bracket"], y: [e.bracket_mid - T], mode: "markers", marker: { color: COLORS.bracket, size: 9, symbol: "line-ew-open" },
-      error_y: { type: "data", array: [half], color: COLORS.bracket, thickness: 2, width: 10 }, hovertemplate: `bracket [${e.bracket[0]}, ${e.bracket[1]}] s<extra></extra>` },
-    { x: ["linear"], y: [e.linear - T], mode: "markers", marker: { color: COLORS.linear, size: 11 }, hovertemplate: `linear ${e.linear} s<br>error %{y:.3e} s<extra></extra>` },
-    { x: ["cubic p(0)"], y: [e.cubic - T], mode: "markers", marker: { color: COLORS.cubic, size: 11, symbol: "diamond" },
-      error_y: { type: "data", array: [Math.abs(e.cubic_error_estimate || 0)], color: COLORS.cubic }, hovertemplate: `cubic ${e.cubic} s<br>error %{y:.3e} s<extra></extra>` },
-  ];
-  plot("plot-estimates", traces, layout(`Period estimates − exact T = ${T.toPrecision(10)} s`, "", "estimate − T (s)", {
+  const who = two ? `: ${sims.a.input.method} filled, ${sims.b.input.method} open` : "";
+  plot("plot-estimates", traces, layout(`Estimates − T, T = ${T.toPrecision(10)} s`, "estimate" + who, "estimate − T (s)", {
+    xaxis: { tickvals: [0, 1, 2], ticktext: ["bracket", "linear", "cubic p(0)"], range: [-0.5, 2.5], tickfont: { size: 13 },
+      automargin: true, zeroline: false, showgrid: false, title: { text: "estimate" + who, font: { size: 13 } } },
     shapes: [{ type: "line", xref: "paper", x0: 0, x1: 1, y0: 0, y1: 0, line: { color: COLORS.exact, width: 1.5, dash: "dash" } }],
-    annotations: [{ xref: "paper", x: 1, y: 0, text: "exact (AGM)", showarrow: false, xanchor: "right", yanchor: "bottom", font: { size: 11 } }],
+    annotations: [{ xref: "paper", x: 1, y: 0, text: "exact (AGM)", showarrow: false, xanchor: "right", yanchor: "bottom", font: { size: 12 } }],
   }));
 }
 
-function renderConvergence(body, err) {
+function renderConvergence(body, err, body2) {
   if (!body) {
     plot("plot-convergence", [], layout("Period error vs step h", "h (s)", "|error| (s)", {
       annotations: [{ text: err ? err.message : "no data", showarrow: false, xref: "paper", yref: "paper", x: 0.5, y: 0.5 }],
@@ -422,17 +530,26 @@ function renderConvergence(body, err) {
   }
   const rows = body.rows.filter((r) => r.estimate);
   if (!rows.length) { renderConvergence(null, { message: "no period from any of these steps" }); return; }
-  const series = (key, name, color, symbol) => {
-    const pts = rows.filter((r) => r.estimate.errors[key] > 0);
+  const series = (rs, key, name, color, symbol) => {
+    const pts = rs.filter((r) => r.estimate && r.estimate.errors[key] > 0);
     return { x: pts.map((r) => r.step), y: pts.map((r) => r.estimate.errors[key]), mode: "lines+markers", name,
       line: { color, width: 2 }, marker: { color, size: 7, symbol }, hovertemplate: `${name}<br>h = %{x:.3e} s<br>|error| = %{y:.3e} s<extra></extra>` };
   };
+  const two = body2 !== null;
+  const tag = (m) => (two ? ` (${m})` : "");
   const traces = [
-    series("bracket_mid", "bracket midpoint", COLORS.bracket, "square"),
-    series("cubic", "inverse cubic", COLORS.cubic, "diamond"),
-    series("linear", "linear", COLORS.linear, "circle-open"),
+    series(rows, "bracket_mid", "bracket midpoint" + tag(body.method), COLORS.bracket, "square"),
+    series(rows, "cubic", "inverse cubic" + tag(body.method), COLORS.cubic, "diamond"),
+    series(rows, "linear", "linear" + tag(body.method), COLORS.linear, "circle-open"),
   ];
   traces[2].line.dash = "dash";
+  if (two) {
+    const rows2 = body2.rows.filter((r) => r.estimate);
+    const c2 = series(rows2, "cubic", `inverse cubic (${body2.method})`, COLORS.b, "diamond-open");
+    const l2 = series(rows2, "linear", `linear (${body2.method})`, COLORS.b, "circle-open");
+    l2.line.dash = "dot";
+    traces.push(c2, l2);
+  }
   // A reference line of slope p = the method's order, through the cubic error at the largest step.
   const first = rows.find((r) => r.estimate.errors.cubic > 0);
   if (first && rows.length > 1) {
@@ -443,14 +560,14 @@ function renderConvergence(body, err) {
   const h = sims.a ? sims.a.input.step : null;
   const gd = $("plot-convergence");
   const xs = traces.flatMap((t) => t.x).concat(h ? [h] : []), ys = traces.flatMap((t) => t.y);
-  plot("plot-convergence", traces, layout(`Period error vs step h (${body.method})`, "h (s)", "|estimate − T| (s)", {
-    xaxis: { type: "log", title: { text: "h (s)" }, gridcolor: "#eef1f5", exponentformat: "power", automargin: true,
+  plot("plot-convergence", traces, layout(`Period error vs step h (${body.method}${two ? ", " + body2.method : ""})`, "h (s)", "|estimate − T| (s)", {
+    xaxis: { type: "log", title: { text: "h (s)" }, gridcolor: "#eef1f5", exponentformat: "power", automargin: true, tickfont: { size: 13 },
       ...logTicks(xs, gd.clientWidth - 90, 56) },
-    yaxis: { type: "log", title: { text: "|estimate − T| (s)" }, gridcolor: "#eef1f5", exponentformat: "power", automargin: true,
-      ...logTicks(ys, gd.clientHeight - 160, 30) },
-    showlegend: true, margin: { l: 62, r: 12, t: 44, b: 96 },
+    yaxis: { type: "log", title: { text: "|estimate − T| (s)" }, gridcolor: "#eef1f5", exponentformat: "power", automargin: true, tickfont: { size: 13 },
+      ...logTicks(ys, gd.clientHeight - 170, 30) },
+    showlegend: true, margin: { l: 70, r: 14, t: 46, b: two ? 150 : 110 },
     shapes: h ? [{ type: "line", x0: h, x1: h, yref: "paper", y0: 0, y1: 1, line: { color: COLORS.p, dash: "dot", width: 1 } }] : [],
-    annotations: h ? [{ x: Math.log10(h), yref: "paper", y: 1, text: "h in use", showarrow: false, yanchor: "bottom", font: { color: COLORS.p, size: 11 } }] : [],
+    annotations: h ? [{ x: Math.log10(h), yref: "paper", y: 1, text: "h in use", showarrow: false, yanchor: "bottom", font: { color: COLORS.p, size: 12 } }] : [],
   }));
 }
 
@@ -466,42 +583,93 @@ function logTicks(values, length, room) {
   return { dtick: Math.max(1, Math.ceil(decades / Math.max(1, Math.floor(length / room)))) };
 }
 
-// ---------- the time cursor: animation, theta(t), error, energy and phase portrait together ----------
-function stateAt(fr, t) {
-  // The simulation's state at time t: its own samples, cubic Hermite in between (theta' is
-  // the derivative of theta). Coarser than 8 samples a period: the nearest sample, at its time.
+async function renderRatio() {
+  // T(α)/T0 from 0 to 179°: the exact ratio, the classical approximations, this pendulum on it.
+  if (!curve) {
+    const r = await getJSON("/api/period_curve");
+    if (!r.ok) return;
+    curve = r.body;
+  }
+  const x = curve.amplitude_deg;
+  const traces = [{ x, y: curve.exact_ratio, mode: "lines", name: "exact (AGM)", line: { color: COLORS.exact, width: 2.5 },
+    hovertemplate: "α = %{x}°<br>T/T0 = %{y:.6f}<extra></extra>" }];
+  const dashes = ["dash", "dot", "dashdot", "longdash", "longdashdot"];
+  const colors = ["#8a94a6", "#e69f00", "#009e73", "#cc79a7", "#56b4e9"];
+  curve.approximations.forEach((a, i) => traces.push({ x, y: a.ratio, mode: "lines", name: a.label,
+    line: { color: colors[i % colors.length], width: 1.6, dash: dashes[i % dashes.length] }, hovertemplate: `${a.label}<br>α = %{x}°<br>T/T0 = %{y:.5f}<extra></extra>` }));
+  const mark = (p, color, name) => ({ x: [p.amplitude_deg], y: [p.period / p.small_angle], mode: "markers", name,
+    marker: { color, size: 12, line: { color: "#fff", width: 1.5 } }, hovertemplate: `${name}<br>α = %{x:.4g}°<br>T/T0 = %{y:.6f}<extra></extra>` });
+  const p = sims.a.period;
+  traces.push(mark(p, COLORS.p, "this pendulum"));
+  if (sims.second) traces.push(mark(sims.second, COLORS.second, "second pendulum"));
+  plot("plot-ratio", traces, layout("Period against amplitude: T(α)/T₀", "α (deg)", "T / T₀", {
+    showlegend: true, margin: { l: 70, r: 14, t: 46, b: 170 },
+    xaxis: { title: { text: "α (deg)" }, range: [0, 180], dtick: 30, gridcolor: "#eef1f5", automargin: true, tickfont: { size: 13 } },
+    yaxis: { title: { text: "T / T₀" }, range: [0.9, 4.2], gridcolor: "#eef1f5", automargin: true, tickfont: { size: 13 } },
+  }));
+}
+
+// ---------- the time cursor over the plots: an element moved each frame, no plotly redraw ----------
+function stateAt(fr, t, theta = fr.theta, omega = fr.omega, c = null) {
+  // The state at time t: the samples, cubic Hermite in between (theta' is the derivative of
+  // theta; with c = g/l, theta'' = -c sin(theta) that of theta', else theta' is linear).
+  // Coarser than 8 samples a period: the nearest sample, at its time.
   const ts = fr.t, n = ts.length;
   if (!n) return null;
   let lo = 0, hi = n - 1;
   if (t <= ts[0]) hi = 0;
   else if (t >= ts[n - 1]) lo = n - 1;
   else while (hi - lo > 1) { const mid = (lo + hi) >> 1; if (ts[mid] <= t) lo = mid; else hi = mid; }
-  const pick = (i) => (fr.theta[i] === null ? null : { t: ts[i], theta: fr.theta[i], omega: fr.omega[i] });
+  const pick = (i) => (theta[i] === null ? null : { t: ts[i], theta: theta[i], omega: omega[i] });
   if (lo === hi || hi === 0 || lo === n - 1) return pick(lo === n - 1 ? lo : hi);
   if (!(fr.per_period >= 8)) return pick(t - ts[lo] < ts[hi] - t ? lo : hi);
   const [a, b] = [pick(lo), pick(hi)];
   if (!a || !b || a.omega === null || b.omega === null) return null;
   const d = ts[hi] - ts[lo], s = (t - ts[lo]) / d, s2 = s * s, s3 = s2 * s;
-  const theta = (2 * s3 - 3 * s2 + 1) * a.theta + (s3 - 2 * s2 + s) * d * a.omega + (-2 * s3 + 3 * s2) * b.theta + (s3 - s2) * d * b.omega;
-  return { t, theta, omega: a.omega + s * (b.omega - a.omega) };
+  const h00 = 2 * s3 - 3 * s2 + 1, h10 = s3 - 2 * s2 + s, h01 = -2 * s3 + 3 * s2, h11 = s3 - s2;
+  const th = h00 * a.theta + h10 * d * a.omega + h01 * b.theta + h11 * d * b.omega;
+  const om = c === null ? a.omega + s * (b.omega - a.omega)
+    : h00 * a.omega - h10 * d * c * Math.sin(a.theta) + h01 * b.omega - h11 * d * c * Math.sin(b.theta);
+  return { t, theta: th, omega: om };
 }
 
-let lastMarks = 0;
-function updateCursor(force = false) {
-  const now = performance.now();
-  if (!force && now - lastMarks < 150) return;
-  lastMarks = now;
+const CURSOR_PLOTS = { "plot-theta": "line", "plot-error": "line", "plot-energy": "line", "plot-phase": "dot" };
+const geom = {};  // per plot: its axes' offsets in the card, read once per redraw, never per frame
+
+function measure(gd) {
+  const kind = CURSOR_PLOTS[gd.id];
+  if (!kind) return;
+  const L = gd._fullLayout;
+  let el = gd.parentElement.querySelector(".cursor-" + kind);
+  if (!el) {
+    el = document.createElement("div");
+    el.className = "cursor-" + kind;
+    el.setAttribute("aria-hidden", "true");
+    gd.parentElement.append(el);
+  }
+  if (!L || !L.xaxis || !L.xaxis._length) { geom[gd.id] = null; el.hidden = true; return; }
+  const xa = L.xaxis, ya = L.yaxis;
+  geom[gd.id] = { el, kind, xa, ya, left: gd.offsetLeft + xa._offset, top: gd.offsetTop + ya._offset, w: xa._length, h: ya._length };
+  if (kind === "line") el.style.height = ya._length + "px";
+}
+
+function moveCursors() {
   $("cursor").value = String(anim.t);
   if (!sims.a) return;
   const t = anim.t;
-  for (const id of ["plot-theta", "plot-error", "plot-energy"]) {
-    const gd = $(id);
-    if (gd && gd.layout && gd.layout.shapes && gd.layout.shapes.length) Plotly.relayout(gd, { "shapes[0].x0": t, "shapes[0].x1": t });
-  }
-  const st = stateAt(sims.a.frames, t);
-  const gd = $("plot-phase");
-  if (gd && gd.data && anim.phaseCursor !== undefined) {
-    Plotly.restyle(gd, { x: [[st ? st.theta : null]], y: [[st ? st.omega : null]] }, [anim.phaseCursor]);
+  for (const id of Object.keys(CURSOR_PLOTS)) {
+    const g = geom[id];
+    if (!g) continue;
+    let x, y;
+    if (g.kind === "line") { x = g.xa.l2p(t); y = 0; }
+    else {
+      const st = stateAt(sims.a.frames, t);
+      x = st ? g.xa.l2p(st.theta) : NaN;
+      y = st ? g.ya.l2p(st.omega) : NaN;
+    }
+    const inside = x >= 0 && x <= g.w && y >= 0 && y <= g.h;
+    if (g.el.hidden === inside) g.el.hidden = !inside;
+    if (inside) g.el.style.transform = `translate(${(g.left + x).toFixed(1)}px, ${(g.top + y).toFixed(1)}px)`;
   }
 }
 
@@ -511,11 +679,91 @@ function renderAnimNote() {
     : `The swing is faster than the animation can show (${f.per_period.toPrecision(2)} samples a period): it jumps between the simulation's states at their times.`;
 }
 
+// ---------- photogate: the times at which the drawn bob of the first pendulum crosses the bottom ----------
+function resetGate() { gate.prev = null; gate.passes = []; gate.period = null; showGate(); }
+
+function photogate(t, theta) {
+  const prev = gate.prev;
+  gate.prev = theta === null ? null : { t, theta };
+  if (!prev || theta === null) return;
+  if (t <= prev.t || t - prev.t > 0.25) { gate.passes = []; return; }  // a jump or a wrap: start again
+  if ((prev.theta < 0) === (theta < 0) || prev.theta === theta) return;
+  // The beam is cut where the bob crosses theta = 0: linear between the two drawn frames.
+  const tc = prev.t + (t - prev.t) * prev.theta / (prev.theta - theta);
+  gate.passes.push(tc);
+  if (gate.passes.length > 3) gate.passes.shift();
+  if (gate.passes.length === 3) gate.period = gate.passes[2] - gate.passes[0];  // every second pass: one period
+  gate.flash = performance.now();
+  showGate();
+}
+
+function showGate() {
+  const T = sims.a ? sims.a.period.period : null;
+  $("gate").textContent = gate.period === null
+    ? `Photogate: ${gate.passes.length} pass${gate.passes.length === 1 ? "" : "es"}, a period needs 3`
+    : `Photogate: period ${gate.period.toFixed(3)} s · exact ${T.toFixed(3)} s`;
+  $("gate").dataset.period = gate.period === null ? "" : String(gate.period);
+}
+
+// ---------- energies of the first pendulum now, in m g l: K = l θ′²/(2g), U = 1 − cos θ ----------
+function energyOf(st, s) {
+  if (!st || st.theta === null || st.omega === null) return null;
+  const K = st.omega * st.omega * s.input.length / (2 * s.input.g), U = 1 - Math.cos(st.theta);
+  return { K, U, E: K + U };
+}
+
+function renderBars() {
+  const s = sims.a, box = $("energy-bars");
+  if (!s) return;
+  const c = s.input.g / s.input.length;
+  const ex = s.exact_frames ? energyOf(stateAt(s.frames, anim.t, s.exact_frames.theta, s.exact_frames.omega, c), s) : null;
+  const sm = energyOf(stateAt(s.frames, anim.t, s.frames.theta, s.frames.omega, c), s);
+  const rows = [["exact", ex], ["sim", sm]];
+  if (!box.dataset.built) {
+    // A table of bars: K, U, E down, the exact motion and the simulation across.
+    box.dataset.built = "1";
+    const head = (text) => { const e = document.createElement("span"); e.className = "head"; e.textContent = text; return e; };
+    box.append(head("m g l"), head("exact"), head("simulated"));
+    for (const [k, name, color] of [["K", "kinetic", "#e07a1f"], ["U", "potential", "#2f6fdb"], ["E", "total", "#1d2330"]]) {
+      const label = document.createElement("span");
+      label.textContent = name;
+      box.append(label);
+      for (const [who] of rows) {
+        const cell = document.createElement("span");
+        cell.className = "cell";
+        const bar = document.createElement("span");
+        bar.className = "bar";
+        const fill = document.createElement("span");
+        fill.style.background = color;
+        fill.id = `bar-${who}-${k}`;
+        bar.append(fill);
+        const v = document.createElement("span");
+        v.className = "v";
+        v.id = `val-${who}-${k}`;
+        cell.append(bar, v);
+        box.append(cell);
+      }
+    }
+  }
+  const top = 2.2;  // the bars' full width: above the largest energy of a swing, 2 m g l
+  for (const [who, e] of rows) {
+    for (const k of ["K", "U", "E"]) {
+      const x = e ? e[k] : null;
+      $(`bar-${who}-${k}`).style.width = x === null ? "0" : `${Math.min(100, Math.max(0, 100 * x / top)).toFixed(1)}%`;
+      $(`val-${who}-${k}`).textContent = x === null ? "–" : x.toFixed(3);
+    }
+  }
+}
+
 // ---------- animation ----------
-function niceLength(x) {
+function niceCeil(x) {
   const p = Math.pow(10, Math.floor(Math.log10(x)));
-  for (const m of [5, 2, 1]) if (m * p <= x) return m * p;
-  return p;
+  for (const m of [1, 2, 5, 10]) if (m * p >= x * (1 - 1e-12)) return m * p;
+  return 10 * p;
+}
+
+function rulerText(len) {
+  return len >= 1 ? `${short(len)} m` : len >= 1e-3 ? `${short(len * 1e3)} mm` : `${len.toExponential(0)} m`;
 }
 
 function draw() {
@@ -526,53 +774,78 @@ function draw() {
   const g = c.getContext("2d");
   g.setTransform(dpr, 0, 0, dpr, 0, 0);
   g.clearRect(0, 0, W, H);
-  const px = W / 2, py = H / 2, Rmax = H / 2 - 26;
   const s = sims.a;
-  let R = Rmax, ruler = null;
+  const two = !!(s && sims.second);
+  // One pivot, or two side by side.
+  const pivots = two ? [{ x: W * 0.27, y: H / 2 }, { x: W * 0.73, y: H / 2 }] : [{ x: W / 2, y: H / 2 }];
+  const Rmax = two ? Math.min(H / 2 - 22, W * 0.23 - 14) : H / 2 - 26;
+  const lengths = s ? [s.input.length].concat(two ? [sims.second.length] : []) : [1];
+  let radii = lengths.map(() => Rmax), ruler = null;
   if (s && view.scale) {
-    // To scale: metres to pixels by a round factor, with a ruler of a round length.
-    const l = s.input.length;
-    const mPerPx = Math.pow(10, Math.ceil(Math.log10(l / Rmax)));
-    R = l / mPerPx;
-    const len = niceLength(l);
-    ruler = { px: len / mPerPx, text: len >= 1 ? `${short(len)} m` : len >= 1e-3 ? `${short(len * 1e3)} mm` : `${len.toExponential(0)} m` };
+    // To scale: one scale for both, the ruler a fixed length on screen (Rmax) of a round length.
+    const L = niceCeil(Math.max(...lengths));
+    radii = lengths.map((l) => Rmax * l / L);
+    ruler = { px: Rmax, text: rulerText(L) };
   }
-  g.strokeStyle = "#d5dbe5"; g.setLineDash([4, 5]); g.lineWidth = 1;
-  g.beginPath(); g.arc(px, py, R, 0, 2 * Math.PI); g.stroke();
-  g.setLineDash([]);
+  pivots.forEach((pv, i) => {
+    g.strokeStyle = "#d5dbe5"; g.setLineDash([4, 5]); g.lineWidth = 1;
+    g.beginPath(); g.arc(pv.x, pv.y, radii[i], 0, 2 * Math.PI); g.stroke();
+    g.setLineDash([]);
+  });
   if (ruler) {
     g.strokeStyle = "#39425a"; g.fillStyle = "#39425a"; g.lineWidth = 2;
-    g.beginPath(); g.moveTo(W - 12 - ruler.px, H - 14); g.lineTo(W - 12, H - 14); g.stroke();
-    g.font = "11px system-ui, sans-serif"; g.textAlign = "right";
-    g.fillText(ruler.text, W - 12, H - 20); g.textAlign = "left";
+    const y = H - 10;
+    g.beginPath(); g.moveTo(W - 10 - ruler.px, y); g.lineTo(W - 10, y);
+    g.moveTo(W - 10 - ruler.px, y - 5); g.lineTo(W - 10 - ruler.px, y + 3); g.moveTo(W - 10, y - 5); g.lineTo(W - 10, y + 3); g.stroke();
+    g.font = "12px system-ui, sans-serif"; g.textAlign = "right";
+    g.fillText("ruler " + ruler.text, W - 10, y - 8); g.textAlign = "left";
   }
-  if (!s) return;
-  const a = anim.drag !== null ? anim.drag : s.input.amplitude;
+  if (!s) return null;
+  const side = view.side;
+  const a = anim.drag !== null ? Math.abs(anim.drag) : s.input.amplitude;
+  const pv = pivots[0], R = radii[0];
   g.strokeStyle = "rgba(209, 73, 91, .35)"; g.lineWidth = 1;
-  for (const sg of [-1, 1]) { g.beginPath(); g.moveTo(px, py); g.lineTo(px + R * Math.sin(sg * a), py + R * Math.cos(sg * a)); g.stroke(); }
+  for (const sg of [-1, 1]) { g.beginPath(); g.moveTo(pv.x, pv.y); g.lineTo(pv.x + R * Math.sin(sg * a), pv.y + R * Math.cos(sg * a)); g.stroke(); }
+  // The photogate: a beam across the bottom of the first pendulum's circle.
+  const lit = gate.flash && performance.now() - gate.flash < 120;
+  g.strokeStyle = lit ? "#d1495b" : "rgba(209, 73, 91, .55)"; g.lineWidth = lit ? 3 : 1.5; g.setLineDash([3, 3]);
+  g.beginPath(); g.moveTo(pv.x - 22, pv.y + R); g.lineTo(pv.x + 22, pv.y + R); g.stroke(); g.setLineDash([]);
+  g.fillStyle = "#39425a"; g.fillRect(pv.x - 26, pv.y + R - 6, 4, 12); g.fillRect(pv.x + 22, pv.y + R - 6, 4, 12);
   const bobs = [];
-  if (anim.drag !== null) bobs.push({ theta: anim.drag, color: COLORS.a, t: 0 });
+  let st = null;
+  if (anim.drag !== null) bobs.push({ theta: anim.drag, color: COLORS.a, pv, R, t: 0 });
   else {
-    const st = stateAt(s.frames, anim.t);
-    bobs.push({ theta: st ? st.theta : null, color: COLORS.a, t: st ? st.t : anim.t });
-    if (sims.b) { const sb = stateAt(sims.b.frames, anim.t); bobs.push({ theta: sb ? sb.theta : null, color: COLORS.b, t: anim.t, ghost: true }); }
+    st = stateAt(s.frames, anim.t);
+    bobs.push({ theta: st ? side * st.theta : null, color: COLORS.a, pv, R, t: st ? st.t : anim.t });
+    if (sims.b) { const sb = stateAt(sims.b.frames, anim.t); bobs.push({ theta: sb ? side * sb.theta : null, color: COLORS.b, pv, R, ghost: true }); }
+    if (two) {
+      const s2 = stateAt(sims.second.frames, anim.t);
+      bobs.push({ theta: s2 ? side * s2.theta : null, color: COLORS.second, pv: pivots[1], R: radii[1] });
+    }
   }
   for (const b of bobs.slice().reverse()) {
     if (b.theta === null) continue;
-    const bx = px + R * Math.sin(b.theta), by = py + R * Math.cos(b.theta);
+    const bx = b.pv.x + b.R * Math.sin(b.theta), by = b.pv.y + b.R * Math.cos(b.theta);
     g.globalAlpha = b.ghost ? 0.75 : 1;
     g.strokeStyle = b.ghost ? COLORS.b : "#39425a"; g.lineWidth = 2.5;
-    g.beginPath(); g.moveTo(px, py); g.lineTo(bx, by); g.stroke();
-    g.fillStyle = b.color; g.beginPath(); g.arc(bx, by, 13, 0, 2 * Math.PI); g.fill();
+    g.beginPath(); g.moveTo(b.pv.x, b.pv.y); g.lineTo(bx, by); g.stroke();
+    g.fillStyle = b.color; g.beginPath(); g.arc(bx, by, 12, 0, 2 * Math.PI); g.fill();
     g.globalAlpha = 1;
   }
-  g.fillStyle = "#39425a"; g.beginPath(); g.arc(px, py, 4.5, 0, 2 * Math.PI); g.fill();
-  g.fillStyle = "#5d6678"; g.font = "12px system-ui, sans-serif";
+  for (const p of pivots) { g.fillStyle = "#39425a"; g.beginPath(); g.arc(p.x, p.y, 4.5, 0, 2 * Math.PI); g.fill(); }
+  g.fillStyle = "#454e62"; g.font = "13px system-ui, sans-serif";
   g.fillText(`l = ${short(s.input.length)} m`, 10, 18);
-  g.fillText(`α = ${short(anim.drag !== null ? anim.drag * 180 / Math.PI : s.input.amplitude_deg)}°`, 10, 34);
+  g.fillText(`α = ${short(anim.drag !== null ? Math.abs(anim.drag) * 180 / Math.PI : s.input.amplitude_deg)}°`, 10, 35);
+  if (two) {
+    g.fillStyle = COLORS.second; g.textAlign = "right";
+    g.fillText(`l₂ = ${short(sims.second.length)} m`, W - 10, 18);
+    g.fillText(`α₂ = ${short(sims.second.amplitude_deg)}°`, W - 10, 35);
+    g.textAlign = "left";
+  }
   const main = bobs[0];
   $("clock").textContent = main.theta === null ? `t = ${main.t.toFixed(3)} s   θ: not a number (blown up)`
     : `t = ${main.t.toFixed(3)} s   θ = ${(main.theta * 180 / Math.PI).toFixed(2)}°`;
+  return st;
 }
 
 function frame(ts) {
@@ -581,40 +854,54 @@ function frame(ts) {
     const tEnd = f[f.length - 1];
     anim.t += ((ts - anim.last) / 1000) * anim.speed;
     if (anim.t > tEnd) anim.t = tEnd > 0 ? anim.t % tEnd : 0;
-    draw();
-    updateCursor();
+    tick();
   }
   anim.last = ts;
   requestAnimationFrame(frame);
 }
 
+/** Everything that follows the time: the swing, the photogate, the bars, the plots' cursors. */
+function tick() {
+  const st = draw();
+  if (st && anim.playing) photogate(st.t, st.theta);
+  renderBars();
+  moveCursors();
+}
+
 function setPlaying(on) {
   anim.playing = on;
   $("play").textContent = on ? "Pause" : "Play";
+  gate.prev = null;
   writeURL();
 }
 
-// Drag the bob: the angle from the pivot's downward vertical becomes the amplitude.
+// Drag the bob: the angle from the pivot's downward vertical becomes the amplitude, and the
+// side it was dragged to the side it is released from (the motion from -α is the mirror image).
 function canvasPoint(ev) {
   const r = $("canvas").getBoundingClientRect();
   return { x: ev.clientX - r.left, y: ev.clientY - r.top, W: r.width, H: r.width * 340 / 420 };
 }
 
+function pivotOf(p) {
+  return sims.second ? { x: p.W * 0.27, y: p.H / 2, R: Math.min(p.H / 2 - 22, p.W * 0.23 - 14) } : { x: p.W / 2, y: p.H / 2, R: p.H / 2 - 26 };
+}
+
 function dragAngle(ev) {
-  const p = canvasPoint(ev);
-  const a = Math.abs(Math.atan2(p.x - p.W / 2, p.y - p.H / 2));
-  return Math.min(a, 179.9 * Math.PI / 180);
+  const p = canvasPoint(ev), pv = pivotOf(p);
+  const a = Math.atan2(p.x - pv.x, p.y - pv.y);
+  const lim = 179.9 * Math.PI / 180;
+  return Math.max(-lim, Math.min(a, lim));
 }
 
 function setupDrag() {
   const c = $("canvas");
   c.addEventListener("pointerdown", (ev) => {
     if (!sims.a) return;
-    const p = canvasPoint(ev);
+    const p = canvasPoint(ev), pv = pivotOf(p);
     const st = stateAt(sims.a.frames, anim.t);
     if (!st) return;
-    const R = p.H / 2 - 26;
-    const bx = p.W / 2 + R * Math.sin(st.theta), by = p.H / 2 + R * Math.cos(st.theta);
+    const th = view.side * st.theta;
+    const bx = pv.x + pv.R * Math.sin(th), by = pv.y + pv.R * Math.cos(th);
     if (Math.hypot(p.x - bx, p.y - by) > 30 && !view.scale) return;
     anim.drag = dragAngle(ev);
     c.setPointerCapture(ev.pointerId);
@@ -623,7 +910,8 @@ function setupDrag() {
   c.addEventListener("pointermove", (ev) => { if (anim.drag !== null) { anim.drag = dragAngle(ev); draw(); } });
   const end = () => {
     if (anim.drag === null) return;
-    const a = anim.drag;
+    const a = Math.abs(anim.drag);
+    view.side = anim.drag < 0 ? -1 : 1;
     anim.drag = null;
     $("amplitude").value = $("unit").value === "deg" ? String(Number((a * 180 / Math.PI).toFixed(1))) : String(Number(a.toFixed(4)));
     syncSlider("amplitude");
@@ -638,6 +926,7 @@ function setupDrag() {
 function markPreset() {
   const g = Number($("g").value);
   for (const b of $("g-presets").children) b.classList.toggle("active", Number(b.dataset.g) === g);
+  $("g-hint").hidden = $("g").value.trim() !== "";
 }
 
 function syncSlider(k) {
@@ -693,6 +982,7 @@ async function init() {
     b.addEventListener("click", () => { $("g").value = String(g); syncSlider("g"); schedule(0); });
     $("g-presets").append(b);
   }
+  for (const k of ERROR_FIELDS) { const d = $(k).getAttribute("aria-describedby"); if (d) $(k).dataset.hint = d; }
   readURL();
   writeForm();
   for (const k of NUMBER_FIELDS) {
@@ -703,28 +993,32 @@ async function init() {
   }
   for (const k of ["method", "method2"]) $(k).addEventListener("change", () => schedule(0));
   $("unit").addEventListener("change", () => { convertAmplitude(); syncSlider("amplitude"); schedule(0); });
-  for (const k of ["exact", "scale"]) {
+  for (const k of ["exact", "scale", "errlog"]) {
     $(k).addEventListener("change", () => {
       readForm(); writeURL();
-      if (sims.a) { renderTheta(); draw(); }
+      if (sims.a) { renderTheta(); renderPhase(); renderError(); draw(); }
     });
   }
+  $("second").addEventListener("change", () => {
+    $("second-fields").hidden = !$("second").checked;
+    if ($("second").checked && !$("length2").value) { $("length2").value = $("length").value; $("amplitude2").value = $("amplitude").value; }
+    schedule(0);
+  });
   $("inputs").addEventListener("submit", (ev) => { ev.preventDefault(); schedule(0); });
   $("play").addEventListener("click", () => setPlaying(!anim.playing));
-  $("speed").addEventListener("change", () => { anim.speed = Number($("speed").value); writeURL(); });
+  $("speed").addEventListener("change", () => { anim.speed = Number($("speed").value); gate.prev = null; writeURL(); });
   $("cursor").addEventListener("input", () => {
     anim.t = Number($("cursor").value);
     if (anim.playing) setPlaying(false); else writeURL();
-    draw();
-    updateCursor(true);
+    tick();
   });
   $("copy-link").addEventListener("click", async () => {
     try { await navigator.clipboard.writeText(location.href); $("copy-link").textContent = "Link copied"; }
     catch (e) { window.prompt("Copy this link:", location.href); }
-    setTimeout(() => { $("copy-link").textContent = "Copy link to this view"; }, 1500);
+    setTimeout(() => { $("copy-link").textContent = "Copy link"; }, 1500);
   });
   setupDrag();
-  window.addEventListener("resize", draw);
+  window.addEventListener("resize", () => { tick(); });
   requestAnimationFrame(frame);
   update();
 }
