@@ -14,7 +14,7 @@ from conftest import assert_one_line_error
 ROOT = Path(__file__).resolve().parents[1]
 PYPROJECT = tomllib.loads((ROOT / "pyproject.toml").read_text())
 # Every package an extra brings; the core must work with all of them absent.
-OPTIONAL = ("matplotlib", "typst", "rich", "fastapi", "uvicorn", "plotly", "orjson", "swagger_ui_bundle", "pyarrow", "dask", "distributed", "pandas")
+OPTIONAL = ("matplotlib", "typst", "rich", "fastapi", "uvicorn", "orjson", "swagger_ui_bundle", "pyarrow", "dask", "distributed", "pandas")
 
 
 def test_version_is_single_sourced(cli):
@@ -82,7 +82,6 @@ print("core ok")
         (["report", "--output", "{tmp}/r.pdf"], "typst", "report"),
         (["report", "--output", "{tmp}/r.pdf"], "matplotlib", "report"),
         (["serve", "--port", "1"], "fastapi", "web"),
-        (["serve", "--port", "1"], "plotly", "web"),
         (["serve", "--port", "1"], "orjson", "web"),
         (["serve", "--port", "1"], "swagger_ui_bundle", "web"),
         (["sweep", "-a", "1deg:2deg:2", "--output", "{tmp}/s.parquet"], "pyarrow", "sweep"),

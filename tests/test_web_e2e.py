@@ -639,7 +639,7 @@ def test_flags_say_what_is_wrong_and_spare_a_bounded_oscillation(browser, server
 def test_second_method_in_every_plot_and_a_log_error(browser, server):
     context, pg = open_page(browser, server, "/?length=1&amplitude=30&unit=deg&step=1e-2&t_max=20&method2=verlet&errlog=1")
     try:
-        pg.wait_for_function("document.getElementById('plot-convergence').data.some(t => t.name.includes('verlet'))",
+        pg.wait_for_function("(document.getElementById('plot-convergence').data || []).some(t => t.name.includes('verlet'))",
                              timeout=60_000)
         names = {pid: pg.evaluate(f"document.getElementById('{pid}').data.map(t => t.name || '')")
                  for pid in ("plot-theta", "plot-phase", "plot-error", "plot-energy", "plot-estimates", "plot-convergence")}

@@ -18,7 +18,6 @@ EXTRA_OF = {
     "typst": "report",
     "fastapi": "web",
     "uvicorn": "web",
-    "plotly": "web",
     "orjson": "web",
     "swagger_ui_bundle": "web",
     "pyarrow": "sweep",

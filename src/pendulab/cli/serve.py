@@ -116,7 +116,7 @@ def serve(port: int, host: str, allow_host: tuple[str, ...]) -> None:
     """Start the web explorer: simulate, animate and plot the pendulum in the browser."""
     from .._extras import require
 
-    for package in ("fastapi", "uvicorn", "plotly", "orjson", "swagger_ui_bundle"):
+    for package in ("fastapi", "uvicorn", "orjson", "swagger_ui_bundle"):
         require(package, "pendulab serve")
 
     try:

@@ -4,7 +4,7 @@
 is plain functions: :mod:`~pendulab.web.parameters` reads a query, :mod:`~pendulab.web.limits`
 bounds its work, :mod:`~pendulab.web.sampling` chooses what is drawn, :mod:`~pendulab.web.views`
 renders the answers whose shapes :mod:`~pendulab.web.models` publishes. The page's own HTML, script and style live in ``static/``;
-plotly.js is served from the installed ``plotly`` package, so the page works offline.
+plotly.js (its "basic" bundle, MIT licence) ships there too, so the page works offline.
 """
 from .app import create_app
 

@@ -184,9 +184,10 @@ def create_app(allowed_hosts: Iterable[str] = guard.LOCAL_HOSTS) -> FastAPI:
     # OpenAPI 3.0 labelling: the Swagger UI that swagger-ui-bundle ships (4.x) reads 3.0 only.
     app = FastAPI(title="pendulab explorer", docs_url=None, redoc_url=None, openapi_url="/api/openapi.json")
     app.openapi_version = "3.0.3"
-    app.add_middleware(guard.Guard, allowed_hosts=allowed_hosts)
     # Compressed answers: the page's script and a simulation's JSON are mostly text and digits.
+    # Inside the guard, so a HEAD answer carries the GET's compressed headers.
     app.add_middleware(GZipMiddleware, minimum_size=500, compresslevel=6)
+    app.add_middleware(guard.Guard, allowed_hosts=allowed_hosts)
 
     @app.exception_handler(RequestValidationError)
     async def _validation(request: Request, exc: RequestValidationError) -> JSONResponse:
