@@ -296,6 +296,8 @@ def test_no_runtime_warning_reaches_the_log(client, query):
     # A warning is an error here: the request would answer 500.
     r = client.get("/api/simulate", params=query)
     assert r.status_code == 200
+    assert client.get("/api/motion", params=query).status_code == 200
+    assert client.get("/api/trajectory.csv", params=query | {"columns": "all", "points": "50"}).status_code == 200
     assert client.get("/api/convergence", params=query | {"steps": "1,0.5,0.1"}).status_code in (200, 422)
 
 

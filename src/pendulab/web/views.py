@@ -204,9 +204,10 @@ def simulate_view(params: Mapping[str, str], stop: threading.Event | None = None
     keep = sampling.minmax((e_idx * nb) // (n + 1), err, nb)
     ex_t, ex_th = sampling.exact_overlay(p["length"], p["amplitude"], p["g"], sim["period"], n * h, nb)
     ph_t = h * sim["phase_idx"]
-    ex_frames = exact_motion(p["length"], p["amplitude"], f_t, p["g"])
-    # One period of the exact orbit, a closed curve in the phase plane.
-    orbit = exact_motion(p["length"], p["amplitude"], np.linspace(0.0, sim["period"], ORBIT_POINTS), p["g"])
+    with np.errstate(invalid="ignore", over="ignore"):  # sqrt(g/l) t beyond the doubles: null, as above
+        ex_frames = exact_motion(p["length"], p["amplitude"], f_t, p["g"])
+        # One period of the exact orbit, a closed curve in the phase plane.
+        orbit = exact_motion(p["length"], p["amplitude"], np.linspace(0.0, sim["period"], ORBIT_POINTS), p["g"])
     return {
         "input": {k: p[k] for k in ("length", "amplitude", "step", "t_max", "g", "method")}
         | {"amplitude_deg": math.degrees(p["amplitude"])},
@@ -280,8 +281,8 @@ def _csv_rows(p: Mapping[str, Any], t: np.ndarray, theta: np.ndarray, omega: np.
     """Rows with the exact motion, the global error and the energy error beside the state."""
     from ..motion import exact_motion
 
-    ex = exact_motion(p["length"], p["amplitude"], t, p["g"])
     with np.errstate(invalid="ignore", over="ignore"):
+        ex = exact_motion(p["length"], p["amplitude"], t, p["g"])
         drift = omega * omega * (p["length"] / (2 * p["g"])) - np.cos(theta) + math.cos(p["amplitude"])
         err = theta - ex.theta
     cols = [a.tolist() for a in (t, theta, omega, ex.theta, ex.omega, err, drift)]
@@ -348,7 +349,8 @@ def motion_view(params: Mapping[str, str]) -> dict[str, Any]:
     view = period_view(p["length"], p["amplitude"], p["g"])
     count = int(min(sampling.FRAME_POINTS, max(2.0, math.ceil(16 * t_max / view["period"]) + 1)))
     t = np.linspace(0.0, t_max, count)
-    m = exact_motion(p["length"], p["amplitude"], t, p["g"])
+    with np.errstate(invalid="ignore", over="ignore"):  # sqrt(g/l) t beyond the doubles: null
+        m = exact_motion(p["length"], p["amplitude"], t, p["g"])
     return view | {"frames": {"t": t.tolist(), "theta": finite_list(m.theta), "omega": finite_list(m.omega),
                               "per_period": view["period"] / (t[1] - t[0])}}
 
