@@ -167,6 +167,15 @@ def test_1b_bounds_are_bounds():
     assert "at most 0.02737" in doc.entry("p1b")
 
 
+def test_2b_the_last_correction_and_the_closed_form_are_bounds():
+    doc = sections(EXAMPLE, ["problem 2"])
+    x = problems.problem2().run.iterates
+    p = math.sqrt(9.80665 / 0.5)
+    closed = 2 * math.asin(2 * math.sqrt(1.5 * p / (2 * math.pi) - 1))  # independent: (9) solved
+    assert value(doc.values["p2.last"]) >= abs(x[-1] - x[-2])
+    assert doc.values["p2.closed"] == "0" or value(doc.values["p2.closed"]) >= abs(closed - x[-1]) - 1e-16
+
+
 def test_2c_shows_every_quotient_with_its_rounding():
     doc = sections(EXAMPLE, ["problem 2"])
     x = problems.problem2().run.iterates
