@@ -28,6 +28,7 @@ sys.path.insert(0, str(Path(__file__).resolve().parent))
 import adversarial
 
 from pendulab.crossing import estimate_period
+from pendulab.lsq import EIGENVALUE_ERROR_FACTOR
 from pendulab.motion import exact_motion, exact_motion_error_bound
 from pendulab.period import FIXED_ITERATIONS_ULPS, agm_period, fixed_iterations_limit, period_digits
 from pendulab.quadrature import quadrature_period
@@ -172,9 +173,9 @@ def markdown(title: str, header: list[str], rows: list[list[str]]) -> str:
 # ---------------------------------------------------------------------------- the docs' table
 #: Budgets of each search: full (the docs) and quick (the tests).
 BUDGETS = {"full": {"motion": 1000, "t_hat": 1_000_000, "digits": 20_000, "dense": 60, "quadrature": 200, "agm": 20_000,
-                    "sincos": 20_000, "sweep": 600},
+                    "sincos": 20_000, "sweep": 600, "eigenvalues": 1000},
            "quick": {"motion": 12, "t_hat": 20_000, "digits": 1000, "dense": 6, "quadrature": 12, "agm": 200,
-                     "sincos": 300, "sweep": 48}}
+                     "sincos": 300, "sweep": 48, "eigenvalues": 30}}
 
 
 def claims(quick: bool = False) -> list[dict]:
@@ -229,6 +230,11 @@ def claims(quick: bool = False) -> list[dict]:
     rows.append({"claim": "the sweep's (3) against `estimate_period`, up to 179.999 degrees (`pendulab.sweep.kernel`)",
                  "bound_text": "5 % of the scalar estimate's own error", "kind": "measured", "bound": 5e-2,
                  "worst": r["worst_share"], "worst_text": f"{r['worst_share']:.1e}", "where": r["where_share"],
+                 "evaluations": r["evaluations"]})
+    r = adversarial.eigenvalue_search(b["eigenvalues"])
+    rows.append({"claim": "eigenvalues of the normal matrix (`pendulab.lsq.EIGENVALUE_ERROR_FACTOR`)",
+                 "bound_text": f"`{EIGENVALUE_ERROR_FACTOR} n u norm(A, 2)`", "kind": "measured (LAPACK: `p(n) u norm(A, 2)`)",
+                 "bound": 1.0, "worst": r["worst"], "worst_text": f"{r['worst']:.2f} of the bound", "where": r["where"],
                  "evaluations": r["evaluations"]})
     return rows
 

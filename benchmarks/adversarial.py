@@ -509,8 +509,53 @@ def sweep_search(budget: int = 400, seed: int = 1, top_degrees: float = 179.99) 
             "evaluations": count}
 
 
+# ---------------------------------------------------------------------------- eigenvalues of the normal matrix
+def eigenvalue_ratio(a: np.ndarray) -> float:
+    """``max |lambda~ - lambda| / eigenvalue_error`` for ``definiteness(a)``: numpy's ``eigvalsh``
+    against mpmath's ``eigsy`` at 60 digits on the exact entries of ``a``."""
+    from pendulab.lsq import definiteness
+
+    d = definiteness(a)
+    with mpmath.workdps(60):
+        exact = sorted(mpmath.eigsy(mpmath.matrix(a.tolist()), eigvals_only=True))
+    return max(float(abs(mpmath.mpf(float(x)) - e)) for x, e in zip(d.eigenvalues, exact)) / d.eigenvalue_error
+
+
+def eigenvalue_search(budget: int = 200, seed: int = 1) -> dict:
+    """:attr:`pendulab.lsq.Definiteness.eigenvalue_error` (``c n u ||A||_2``) against the computed
+    eigenvalues' error: the normal matrices of basis (10) on time grids (4 to 400 points,
+    short and long spans, where the columns are nearly dependent) and symmetric matrices
+    with eigenvalues spread over 1 .. 1e-16, clustered or of mixed sign."""
+    from pendulab.lsq import TRIG_BASIS, design_matrix
+
+    rng = np.random.default_rng(seed)
+    worst, where = 0.0, None
+    for i in range(budget):
+        kind = i % 3
+        if kind == 0:
+            t = np.sort(rng.uniform(0, 10 ** rng.uniform(-1, 1.5), int(rng.integers(4, 400))))
+            x = design_matrix(t, TRIG_BASIS)
+            a = x.T @ x
+            what = f"basis (10) on {len(t)} times in [0, {t[-1]:.3g}]"
+        else:
+            n = int(rng.integers(2, 9))
+            q, _ = np.linalg.qr(rng.standard_normal((n, n)))
+            lam = 10 ** rng.uniform(-16, 0, n)
+            if kind == 2:
+                lam = np.where(rng.random(n) < 0.5, lam, -lam) if rng.random() < 0.5 else np.full(n, lam[0]) * (1 + 1e-12 * rng.standard_normal(n))
+            a = (q * lam) @ q.T
+            a = 0.5 * (a + a.T)
+            what = f"n = {n}, eigenvalues {np.min(np.abs(lam)):.1e} .. {np.max(np.abs(lam)):.1e}"
+        r = eigenvalue_ratio(a)
+        if r > worst:
+            worst, where = r, what
+    return {"claim": "eigenvalue_error bounds the error of eigvalsh", "worst": worst,
+            "unit": "of the bound", "where": where, "evaluations": budget}
+
+
 SEARCHES = {"motion": motion_search, "t_hat": t_hat_search, "digits": digits_search, "dense": dense_search,
-            "quadrature": quadrature_search, "agm": agm_search, "sincos": sincos_search, "sweep": sweep_search}
+            "quadrature": quadrature_search, "agm": agm_search, "sincos": sincos_search, "sweep": sweep_search,
+            "eigenvalues": eigenvalue_search}
 
 
 def main() -> None:
