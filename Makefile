@@ -5,7 +5,7 @@ PYTHON ?= python3
 VENV := .venv
 BIN := $(VENV)/bin
 
-.PHONY: test lint docs report bench clean browser
+.PHONY: check test lint docs report bench clean browser
 .PRECIOUS: $(VENV)/.installed-%
 
 $(BIN)/python:
@@ -15,6 +15,13 @@ $(BIN)/python:
 $(VENV)/.installed-%: pyproject.toml | $(BIN)/python
 	$(BIN)/python -m pip install --quiet -e '.[$*]'
 	touch $@
+
+# The fast tier, for every change: lint, types, and the tests not marked slow (tests/conftest.py
+# lists the slow ones). `make test` runs every test, the slow ones too (CI runs it).
+check: $(VENV)/.installed-test
+	$(BIN)/ruff check src tests benchmarks
+	$(BIN)/mypy
+	$(BIN)/python -m pytest -n 2 -q -m "not slow"
 
 test: $(VENV)/.installed-test browser
 	$(BIN)/python -m pytest -n 2

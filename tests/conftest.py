@@ -1,10 +1,75 @@
 """Shared test helpers."""
 import json
 
-import mpmath
 import pytest
 
 from pendulab.cli import main
+
+#: Test files whose every test takes seconds (a server or a CLI in a subprocess, the
+#: browser, Typst, Sphinx, a notebook kernel, ruff and mypy): the slow tier. ``make check``
+#: runs the others (``-m "not slow"``) and ruff and mypy directly; ``make test`` runs all.
+SLOW_FILES = frozenset({
+    "test_boundary_cli.py", "test_docs.py", "test_lint.py", "test_notebook.py", "test_packaging.py",
+    "test_report.py", "test_web_e2e.py", "test_web_load.py",
+})
+
+
+#: Single tests of the other files that take seconds (measured with ``--durations``): a
+#: large search, a CLI in a subprocess, a figure saved as PDF, a Dask cluster. Each entry is
+#: ``file::test`` and covers every parametrisation of that test.
+SLOW_TESTS = frozenset({
+    "test_agm_rounding.py::test_extreme_lengths_and_g_give_representable_periods",
+    "test_agm_rounding.py::test_2000_random_pendulums_are_correctly_rounded",
+    "test_agm_rounding.py::test_half_angle_cos_is_accurate_to_double_double",
+    "test_approximations.py::test_cli_approximations",
+    "test_boundary_web.py::test_several_hostile_values_at_once",
+    "test_boundary_web.py::test_hostile_value_in_any_parameter",
+    "test_cli_core.py::test_figures_leave_matplotlib_global_state_alone",
+    "test_cli_core.py::test_simulate_figures",
+    "test_cli_problems.py::test_fit_json_and_plot",
+    "test_crossing.py::test_flow_series_is_the_solution_of_the_ode",
+    "test_crossing.py::test_streamed_search_equals_search_on_the_stored_trajectory",
+    "test_fast_step.py::test_kernels_equal_the_python_loop",
+    "test_fast_step.py::test_fast_step_equals_the_literal_step_along_trajectories",
+    "test_fast_step.py::test_table_sin_cos_within_a_quarter_of_the_margins_of_the_c_library",
+    "test_fast_step.py::test_table_sin_cos_error_against_mpmath",
+    "test_group.py::test_length_is_the_correctly_rounded_geometric_mean",
+    "test_inputs.py::test_every_parser_returns_or_raises_one_line",
+    "test_motion.py::test_exact_motion_within_its_bound_densely",
+    "test_period_certified.py::test_int_text_prints_any_length",
+    "test_programs.py::test_each_program_runs_without_pendulab",
+    "test_quadrature.py::test_ten_million_subintervals_in_bounded_memory",
+    "test_quadrature.py::test_singular_sum_nodes_keep_their_distance_to_alpha",
+    "test_sweep.py::test_sweep_equals_estimate_period_bit_for_bit",
+    "test_sweep.py::test_lanes_vectorise",
+    "test_sweep.py::test_dask_cluster_gives_the_same_result",
+    "test_sweep.py::test_cli_sweep",
+    "test_sweep.py::test_unreachable_scheduler_is_one_clear_error",
+    "test_web_api.py::test_csv_streams_in_blocks",
+})
+
+
+def pytest_ignore_collect(collection_path, config):
+    """``-m "not slow"`` (``make check``) does not even import the slow files: collecting
+    them would import the browser driver, nbformat and pypdf for nothing."""
+    if config.getoption("markexpr") == "not slow" and collection_path.name in SLOW_FILES:
+        return True
+    return None
+
+
+@pytest.hookimpl(tryfirst=True)  # before -m deselects by marker
+def pytest_collection_modifyitems(config, items):
+    seen = set()
+    for item in items:
+        test = f"{item.path.name}::{item.originalname}"
+        if item.path.name in SLOW_FILES or test in SLOW_TESTS:
+            item.add_marker(pytest.mark.slow)
+            seen.add(test)
+    # On a run of the whole folder, a listed test that no longer exists is a stale entry.
+    if {item.path.name for item in items} >= {name.split("::")[0] for name in SLOW_TESTS}:
+        stale = sorted(SLOW_TESTS - seen)
+        if stale:
+            raise pytest.UsageError(f"tests/conftest.py SLOW_TESTS names tests that do not exist: {stale}")
 
 
 class Run:
@@ -36,18 +101,3 @@ def assert_one_line_error(res, *fragments):
     assert "Traceback" not in res.err
     for f in fragments:
         assert f in lines[0], (f, lines[0])
-
-
-def reference_period(length, alpha, g=9.80665, dps=50):
-    """T = 4 sqrt(l/g) K(m), m = sin^2(alpha/2) (DLMF 19.2.8), in mpmath from the inputs' exact doubles.
-
-    Independent of the library's AGM loop: the reference for every period test.
-    """
-    with mpmath.workdps(dps):
-        m = mpmath.sin(mpmath.mpf(alpha) / 2) ** 2
-        return 4 * mpmath.sqrt(mpmath.mpf(length) / mpmath.mpf(g)) * mpmath.ellipk(m)
-
-
-def ellipk_period(length: float, alpha: float, g: float = 9.80665) -> float:
-    """:func:`reference_period` at 30 digits, rounded to a double."""
-    return float(reference_period(length, alpha, g, dps=30))

@@ -11,11 +11,9 @@ import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
-from conftest import reference_period
 from pendulab._agm import COS_HI, COS_LO, ERROR_BOUND, N_TABLE, SIN_HI, SIN_LO, agm_periods_dd, half_angle_cos
 from pendulab.period import agm_period, nearest_period
-
-G = 9.80665
+from reference import G, reference_period
 
 
 def nearest(length, alpha, g=G):

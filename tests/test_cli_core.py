@@ -7,8 +7,9 @@ import sys
 import mpmath
 import pytest
 
-from conftest import assert_one_line_error, ellipk_period
+from conftest import assert_one_line_error
 from pendulab.period import agm_period
+from reference import G_TEXT, G, ellipk_period, reference_period, reference_period_kp
 
 L3 = 2.0800838231
 
@@ -18,13 +19,13 @@ def test_period_json(cli):
     assert res.code == 0
     data = res.json
     assert data["period"] == agm_period(3.5, 4 * math.pi / 5)
-    assert data["small_angle_period"] == pytest.approx(2 * math.pi * math.sqrt(3.5 / 9.80665), rel=1e-15)
+    assert data["small_angle_period"] == pytest.approx(2 * math.pi * math.sqrt(3.5 / G), rel=1e-15)
 
 
 def test_period_digits_json(cli):
     data = cli("period", "-l", "3.5", "-a", "4pi/5", "--digits", "40", "--json").json
     with mpmath.workdps(60):  # reference: 4 sqrt(l/g) K(sin^2(2 pi/5))
-        ref = 4 * mpmath.sqrt(mpmath.mpf("3.5") / mpmath.mpf("9.80665")) * mpmath.ellipk(mpmath.sin(2 * mpmath.pi / 5) ** 2)
+        ref = reference_period("3.5", 4 * mpmath.pi / 5, G_TEXT, dps=60)
         assert data["period_digits"] == mpmath.nstr(ref, 40, strip_zeros=False)
 
 
@@ -183,8 +184,8 @@ def test_period_text_prints_only_correct_digits(cli):
     # (reference: 4 sqrt(l/g) K(sin^2(alpha/2)) and 2 pi sqrt(l/g) in mpmath, 50 digits).
     out = cli("period", "-l", "1", "-a", "pi/4").out.splitlines()
     with mpmath.workdps(50):
-        t = 4 * mpmath.sqrt(1 / mpmath.mpf("9.80665")) * mpmath.ellipk(mpmath.sin(mpmath.pi / 8) ** 2)
-        t0 = 2 * mpmath.pi * mpmath.sqrt(1 / mpmath.mpf("9.80665"))
+        t = reference_period("1", mpmath.pi / 4, G_TEXT, dps=50)
+        t0 = 2 * mpmath.pi * mpmath.sqrt(1 / mpmath.mpf(G_TEXT))
         assert out[0].split("=")[1].split()[0] == mpmath.nstr(t, 15, strip_zeros=False)
         assert out[1].split("=")[1].split()[0] == mpmath.nstr(t0, 15, strip_zeros=False)
 
@@ -264,7 +265,7 @@ def test_period_takes_the_amplitude_exactly_near_pi(cli):
                 kp = mpmath.sinpi(mpmath.mpf(1 - c) / 2)  # cos(c pi/2) = sin((1 - c) pi/2), no cancellation
             else:
                 kp = mpmath.cos(mpmath.mpf(text) / 2)
-            t = 4 * mpmath.sqrt(1 / mpmath.mpf("9.80665")) * mpmath.ellipk(1 - kp * kp)
+            t = reference_period_kp(1, kp, G_TEXT)
             assert data["period_digits"] == mpmath.nstr(t, 5, strip_zeros=False)
             assert data["period_as_written"] == mpmath.libmp.to_float(t._mpf_, rnd="n")
         on_doubles = data["amplitude"] < math.pi

@@ -5,9 +5,10 @@ import sys
 
 import pytest
 
-from conftest import assert_one_line_error, reference_period
+from conftest import assert_one_line_error
 from pendulab.period import FIXED_ITERATIONS_ULPS, agm_period
 from pendulab.problems import problem1, problem2
+from reference import G, reference_period, reference_period_kp
 
 
 def test_gravity_json_and_units(cli):
@@ -118,7 +119,7 @@ def test_quadrature_graded_near_pi_against_mpmath(cli, gap):
     assert data["graded"] is True
     with mpmath.workdps(60):
         kp = mpmath.cos(mpmath.mpf(alpha) / 2)
-        ref = float(4 * mpmath.sqrt(1 / mpmath.mpf(9.80665)) * mpmath.ellipk(1 - kp * kp))
+        ref = float(reference_period_kp(1, kp, G))
     assert abs(data["rows"][1]["substitution_estimate"] / ref - 1) < 4e-15
     equal = cli("quadrature", "-l", "1", "-a", repr(alpha), "--n", "3000", "--substitution", "--json").json
     assert abs(equal["rows"][0]["substitution_estimate"] / ref - 1) > 1e-3  # what --graded is for

@@ -9,22 +9,16 @@ from pendulab.errors import InputError
 from pendulab.motion import exact_motion, global_error
 from pendulab.period import agm_period
 from pendulab.taylor import METHODS, method_code, simulate
-
-G = 9.80665
+from reference import G, taylor2_plain
 
 
 def test_taylor2_is_bit_identical_to_equations_3():
-    # A plain-Python loop of (3), operation for operation: the kernel must match bit for bit.
+    # The coursework program taylor.py (a plain loop of (3)): the kernel must match bit for bit.
     alpha, h, c = 4 * math.pi / 5, 0.2, -G / 2.0800838231
-    z1, z2 = alpha, 0.0
-    expect = [(z1, z2)]
-    for _ in range(60):
-        s = math.sin(z1)
-        z1, z2 = z1 + h * z2 + 0.5 * h * h * c * s, z2 + h * c * s + 0.5 * h * h * c * z2 * math.cos(z1)
-        expect.append((z1, z2))
+    z1, z2 = taylor2_plain(alpha, c, h, 60)
     tr = simulate(2.0800838231, alpha, h, 12.0)
-    assert tr.theta.tolist() == [e[0] for e in expect]
-    assert tr.omega.tolist() == [e[1] for e in expect]
+    assert tr.theta.tolist() == z1.tolist()
+    assert tr.omega.tolist() == z2.tolist()
 
 
 def test_figure3_last_row():

@@ -21,6 +21,7 @@ import plain_pendulum as plain
 from pendulab.cli import main
 from pendulab.errors import InputError
 from pendulab.key import answer_key, parse_entries, parse_groups, tolerance
+from reference import G
 
 GROUPS = [(262, 407, 634), (99999, 1), (81234, 90876), (11111,), (98765, 43210, 55555)]
 
@@ -101,7 +102,7 @@ def test_common_answers_once(key):
 
     assert d["common"]["problem1"]["g"] == pytest.approx(4 * math.pi**2 * 1.152 / 2.1536**2,
                                                          rel=tolerance("1(b) g").value)
-    p = math.sqrt(9.80665 / 0.5)
+    p = math.sqrt(G / 0.5)
     assert d["common"]["problem2"]["alpha"] == pytest.approx(2 * math.asin(2 * math.sqrt(1.5 * p / (2 * math.pi) - 1)),
                                                              abs=tolerance("2 alpha").value)
     assert d["common"]["problem4"]["points"] == 401 and d["common"]["problem4_601"]["points"] == 601

@@ -38,7 +38,7 @@ def test_round_half_up_on_exact_values():
 
 def test_data_follow_the_formulas(p4):
     # T from (8) with 7 iterations, t_max = ceil(T) = 4, h = 0.01: 401 points (not Y_0..Y_600).
-    assert p4.period == agm_period(3.5, math.pi / 4, iterations=7)
+    assert p4.t_hat == agm_period(3.5, math.pi / 4, iterations=7)
     assert p4.t_max == 4.0 and p4.points == 401
     assert p4.last_points.shape == (10, 2)
     assert p4.last_points[:, 0] == pytest.approx(np.arange(391, 401) / 100, abs=1e-12)

@@ -9,8 +9,7 @@ from pendulab.errors import InputError
 from pendulab.motion import energy, exact_motion, global_error, jacobi, quarter_period
 from pendulab.period import agm_period
 from pendulab.taylor import simulate
-
-G = 9.80665
+from reference import G
 
 
 def mp_motion(length, alpha, t, dps=40):

@@ -9,8 +9,7 @@ from scipy.optimize import brentq
 from pendulab.errors import InputError, NumericalError
 from pendulab.newton import PeriodEquation, check_interval, newton
 from pendulab.problems import problem2
-
-G = 9.80665
+from reference import G_TEXT, G
 
 
 def f_ref(alpha, length=0.5, target=1.5):
@@ -21,7 +20,7 @@ def f_ref(alpha, length=0.5, target=1.5):
 def root_mp(length="0.5", target="1.5", dps=50):
     """The root of (9) = target by mpmath.findroot at 50 digits."""
     with mpmath.workdps(dps):
-        p = mpmath.sqrt(mpmath.mpf("9.80665") / mpmath.mpf(length))
+        p = mpmath.sqrt(mpmath.mpf(G_TEXT) / mpmath.mpf(length))
         f = lambda a: 2 * mpmath.pi / p * (1 + mpmath.sin(a / 2) ** 2 / 4) - mpmath.mpf(target)  # noqa: E731
         return mpmath.findroot(f, 1.0)
 

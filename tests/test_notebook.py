@@ -6,6 +6,8 @@ import mpmath
 import nbformat
 from nbclient import NotebookClient
 
+from reference import G_TEXT, reference_period
+
 ROOT = Path(__file__).resolve().parents[1]
 TUTORIAL = ROOT / "examples" / "tutorial.ipynb"
 
@@ -27,7 +29,7 @@ def test_tutorial_runs(monkeypatch):
     text = "\n".join(o.get("data", {}).get("text/plain", "") for o in outputs)
     # Problem 5's pendulum to 30 digits; reference: 4 sqrt(l/g) K(sin^2(2 pi/5)) in mpmath.
     with mpmath.workdps(60):
-        ref = 4 * mpmath.sqrt(mpmath.mpf("3.5") / mpmath.mpf("9.80665")) * mpmath.ellipk(mpmath.sin(2 * mpmath.pi / 5) ** 2)
+        ref = reference_period("3.5", 4 * mpmath.pi / 5, G_TEXT, dps=60)
     assert repr(mpmath.nstr(ref, 30, strip_zeros=False)) in text
     assert "0.796775" in text  # Figure 3 of the coursework: z1 = 0.796774928412 at t = 2.1
     assert any("image/png" in o.get("data", {}) for o in outputs)  # the figures were drawn

@@ -18,16 +18,16 @@ from hypothesis import strategies as st
 from conftest import assert_one_line_error
 from pendulab.errors import InputError
 from pendulab.period import period_ball, period_digits, period_mp
+from reference import G_TEXT, G, reference_period_kp
 
 
-def ref_period(length: str, alpha_coef: Fraction, pi_multiple: bool, g: str = "9.80665", dps: int = 120):
-    """``4 sqrt(l/g) K(k)`` with ``1 - m = cos^2(alpha/2)`` (mpmath.ellipk takes m)."""
+def ref_period(length: str, alpha_coef: Fraction, pi_multiple: bool, g: str = G_TEXT, dps: int = 120):
+    """:func:`reference.reference_period_kp` with ``k' = cos(alpha/2)``; for a multiple of pi,
+    ``cos(c pi/2)`` from the exact ``1 - c`` (no cancellation)."""
     with mpmath.workdps(dps):
         c = mpmath.mpf(alpha_coef.numerator) / alpha_coef.denominator
-        # cos(c pi/2) from the exact 1 - c, for a multiple of pi
         kp = mpmath.sin(mpmath.pi * (1 - c) / 2) if pi_multiple else mpmath.cos(c / 2)
-        m = 1 - kp * kp
-        return 4 * mpmath.sqrt(mpmath.mpf(length) / mpmath.mpf(g)) * mpmath.ellipk(m)
+        return reference_period_kp(length, kp, g)
 
 
 @pytest.mark.parametrize(
@@ -195,8 +195,7 @@ def test_seven_iterations_within_their_bound_up_to_the_truncation_limit():
     t7 = agm_period(1.0, alphas, iterations=7)
     # 1 - m = cos^2(alpha/2) is 3e-28 at the limit: 70 digits keep 40 of it.
     with mpmath.workdps(70):
-        ref = [float(4 * mpmath.sqrt(1 / mpmath.mpf(9.80665))
-                     * mpmath.ellipk(1 - mpmath.cos(mpmath.mpf(a) / 2) ** 2)) for a in alphas]
+        ref = [float(reference_period_kp(1, mpmath.cos(mpmath.mpf(a) / 2), G)) for a in alphas]
     ulps = [abs(x - r) / math.ulp(r) for x, r in zip(t7, ref)]
     assert max(ulps) <= FIXED_ITERATIONS_ULPS
 

@@ -24,6 +24,7 @@ from pendulab.interpolation import inverse_cubic
 from pendulab.lsq import least_squares
 from pendulab.period import agm_period
 from pendulab.taylor import simulate
+from reference import G
 
 P = coursework.load()
 EXAMPLE = [262, 407, 634]
@@ -209,7 +210,7 @@ def test_problem2_is_the_engines():
     q, rho, k_max = p2.quotients(xs, delta)
     assert k_max == r.run.k_max and q == list(r.run.q) and rho == list(r.run.q_rounding)
     # Independent: (9) solved in closed form.
-    p = math.sqrt(9.80665 / 0.5)
+    p = math.sqrt(G / 0.5)
     assert xs[-1] == pytest.approx(2 * math.asin(2 * math.sqrt(1.5 * p / (2 * math.pi) - 1)), rel=1e-15)
 
 

@@ -20,6 +20,7 @@ from pendulab.quadrature import (
     quadrature_period,
     substituted_integrand,
 )
+from reference import G_TEXT, G, reference_period
 
 L, ALPHA = 3.5, 4 * math.pi / 5  # problem 5
 
@@ -36,7 +37,7 @@ def s_n_mp(n, dps=40):
             lo, hi = a + i * h, a + (i + 1) * h
             m, mu = (lo + hi) / 2, (hi - lo) / 2
             total += (hi - lo) / 18 * (5 * f(m - r * mu) + 8 * f(m) + 5 * f(m + r * mu))
-        return 4 * mpmath.sqrt(mpmath.mpf(L) / (2 * mpmath.mpf("9.80665"))) * total
+        return 4 * mpmath.sqrt(mpmath.mpf(L) / (2 * mpmath.mpf(G_TEXT))) * total
 
 
 def test_rule_11_is_gauss_legendre_3():
@@ -78,7 +79,7 @@ def test_s_n_against_scipy_gauss_legendre():
     for n in (1, 10, 100):
         edges = np.linspace(0.0, ALPHA, n + 1)
         total = math.fsum(fixed_quad(f, lo, hi, n=3)[0] for lo, hi in zip(edges, edges[1:]))
-        assert quadrature_period(L, ALPHA, n) == pytest.approx(period_prefactor(L, 9.80665) * total, rel=1e-14)
+        assert quadrature_period(L, ALPHA, n) == pytest.approx(period_prefactor(L, G) * total, rel=1e-14)
 
 
 def test_singular_rate_is_one_half():
@@ -93,7 +94,7 @@ def test_integral_against_scipy_quad_alg_weight():
     # (alpha - theta)^(-1/2) is taken by QUADPACK's algebraic weight; the rest is smooth.
     smooth = lambda th: math.sqrt((ALPHA - th) / (math.cos(th) - math.cos(ALPHA))) if th < ALPHA else 1 / math.sqrt(math.sin(ALPHA))  # noqa: E731
     val, _ = quad(smooth, 0.0, ALPHA, weight="alg", wvar=(0.0, -0.5))
-    t_quad = period_prefactor(L, 9.80665) * val
+    t_quad = period_prefactor(L, G) * val
     assert t_quad == pytest.approx(float(period_mp(L, ALPHA)), rel=1e-12)
     assert t_quad == pytest.approx(agm_period(L, ALPHA, iterations=7), rel=1e-12)
     s = [quadrature_period(L, ALPHA, n) for n in (10, 100, 1000)]
@@ -178,7 +179,7 @@ def test_a_table_of_more_than_2e7_panels_in_all_is_refused():
 def test_the_cap_is_past_the_point_of_use():
     """At the cap, the substituted rule is long at the rounding level (mpmath's elliptic K as
     reference), and the plain rule still loses its half digit per decade of n: n^(-1/2)."""
-    exact = float(4 * mpmath.sqrt(mpmath.mpf(L) / 9.80665) * mpmath.ellipk(mpmath.sin(mpmath.mpf(ALPHA) / 2) ** 2))
+    exact = float(4 * mpmath.sqrt(mpmath.mpf(L) / G) * mpmath.ellipk(mpmath.sin(mpmath.mpf(ALPHA) / 2) ** 2))
     assert abs(quadrature_period(L, ALPHA, 100, substitution=True) - exact) < 4 * 2.0**-52 * exact
     e3, e4 = (abs(quadrature_period(L, ALPHA, n) - exact) for n in (1000, 10000))
     assert math.log10(e3 / e4) == pytest.approx(0.5, abs=1e-3)
@@ -215,9 +216,9 @@ def test_substituted_errors_are_measured_against_the_stated_reference(alpha):
     # T^ (7 iterations) has converged at the example, not within 1e-15 of pi; the table's
     # substituted errors and the stated reference must name the same period.
     r = problem5(L, alpha, ns=(10, 100))
-    with mpmath.workdps(50):  # (8) to convergence, in mpmath, g the double 9.80665 as the code takes it
+    with mpmath.workdps(50):  # (8) to convergence, in mpmath, g the double G as the code takes it
         a = mpmath.mpf(alpha)
-        true = float(2 * mpmath.pi * mpmath.sqrt(mpmath.mpf(L) / mpmath.mpf(9.80665)) / mpmath.agm(1, mpmath.cos(a / 2)))
+        true = float(2 * mpmath.pi * mpmath.sqrt(mpmath.mpf(L) / mpmath.mpf(G)) / mpmath.agm(1, mpmath.cos(a / 2)))
     assert r.substitution_reference == (r.t_hat if r.t_hat_converged else r.period)
     assert (r.substitution_reference == r.t_hat) == (alpha == ALPHA)
     for row in r.rows:
@@ -238,7 +239,7 @@ def s_n_sin_form_mp(alpha: float, n: int, length: float = 1.0, dps: int = 50):
         for i in range(n):
             m, mu = (i + mpmath.mpf(1) / 2) * h, h / 2
             total += mu / 9 * (5 * f(m - r * mu) + 8 * f(m) + 5 * f(m + r * mu))
-        return 4 * mpmath.sqrt(mpmath.mpf(length) / (2 * mpmath.mpf("9.80665"))) * total
+        return 4 * mpmath.sqrt(mpmath.mpf(length) / (2 * mpmath.mpf(G_TEXT))) * total
 
 
 @pytest.mark.parametrize("alpha", [1e-160, 1e-200, 1e-300, 5e-324, 1e-3, ALPHA, math.pi - 1e-12])
@@ -270,7 +271,6 @@ def test_substituted_integrand_keeps_k_prime_near_pi():
 
 @pytest.mark.parametrize("gap", [1e-1, 1e-6, 1e-9, 1e-12, 1e-15, 3.2e-16])
 def test_graded_panels_reach_rounding_level_up_to_pi(gap):
-    from conftest import reference_period
 
     alpha = math.pi - gap  # 3.2e-16: the double rounds to pi - 3.2e-16 (k' = 1.6e-16)
     ref = float(reference_period(1.0, alpha))
@@ -278,7 +278,6 @@ def test_graded_panels_reach_rounding_level_up_to_pi(gap):
 
 
 def test_equal_panels_converge_once_they_resolve_the_peak():
-    from conftest import reference_period
 
     # The issue's case: k rounds to 1 at pi - 1e-9; the k' form gives the true 29.126 with grading
     # and the equal panels move towards it instead of settling on 26.168.

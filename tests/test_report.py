@@ -17,6 +17,7 @@ import pytest
 from pendulab import problems
 from pendulab.cli import main
 from pendulab.report import build_report, load_catalogue
+from reference import G_TEXT, G
 
 EXAMPLE = (262, 407, 634)
 OTHER = (81234, 90876)  # sum 172110 -> digits 1,7,2,1,1
@@ -93,7 +94,7 @@ def test_problem1_numbers(built):
 def test_problem2_numbers(built):
     text = pdf_text(built["en"])
     # Independent: (9) solved in closed form, alpha = 2 asin(2 sqrt(1.5 p / (2 pi) - 1)).
-    p = math.sqrt(9.80665 / 0.5)
+    p = math.sqrt(G / 0.5)
     alpha = 2 * math.asin(2 * math.sqrt(1.5 * p / (2 * math.pi) - 1))
     assert f"{alpha:.12f}" in text
     assert f"{math.degrees(alpha):.9f}" in text
@@ -109,7 +110,7 @@ def test_problem3_numbers(built):
         assert value in text, value
     assert "2.0800838231" in text  # the spec's footnote 4
     # T^ of the group's pendulum, independently by mpmath's AGM.
-    t_hat = 2 * mpmath.pi * mpmath.sqrt(mpmath.mpf("2.0800838231") / mpmath.mpf("9.80665")) / mpmath.agm(
+    t_hat = 2 * mpmath.pi * mpmath.sqrt(mpmath.mpf("2.0800838231") / mpmath.mpf(G_TEXT)) / mpmath.agm(
         1, mpmath.cos(2 * mpmath.pi / 5))
     assert mpmath.nstr(t_hat, 12) in text
     r = problems.problem3(EXAMPLE)
@@ -302,7 +303,7 @@ def test_section0_takes_the_inputs_exactly(tmp_path):
     doc = section_data(EXAMPLE, "en", tmp_path, only=["exact period"])
     # `pendulab period -l 2.0800838231 -a 4pi/5 --digits 20`, and mpmath here from the exact inputs.
     with mpmath.workdps(60):
-        t = 2 * mpmath.pi * mpmath.sqrt(mpmath.mpf("2.0800838231") / mpmath.mpf("9.80665")) / mpmath.agm(
+        t = 2 * mpmath.pi * mpmath.sqrt(mpmath.mpf("2.0800838231") / mpmath.mpf(G_TEXT)) / mpmath.agm(
             1, mpmath.cos(2 * mpmath.pi / 5))
     assert mpmath.nstr(t, 20) == "4.7894242309743877759"
     assert "$T = 4.7894242309743877759$ s" in doc.entry("agm.text")
@@ -489,7 +490,7 @@ def test_section0_sentences_are_true(tmp_path, lang):
 
     def nearest(l_, a):  # the true period of the doubles (elliptic K, not the AGM), rounded once
         with mpmath.workdps(60):
-            t = 4 * mpmath.sqrt(mpmath.mpf(l_) / mpmath.mpf(9.80665)) * mpmath.ellipk(mpmath.sin(mpmath.mpf(a) / 2) ** 2)
+            t = 4 * mpmath.sqrt(mpmath.mpf(l_) / mpmath.mpf(G)) * mpmath.ellipk(mpmath.sin(mpmath.mpf(a) / 2) ** 2)
             return mpmath.libmp.to_float(t._mpf_, rnd="n")
 
     # "T^ = t7 s, n ulp from the correctly rounded period of the same doubles, tc s"

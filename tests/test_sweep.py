@@ -14,6 +14,7 @@ from pendulab.errors import InputError
 from pendulab.interpolation import inverse_cubic, inverse_cubic_rows
 from pendulab.period import agm_period
 from pendulab.sweep import sweep
+from reference import G
 
 AMPLITUDES = np.radians([5.0, 45.0, 120.0, 170.0, 179.0])
 
@@ -149,7 +150,7 @@ def test_threads_give_one_thread_bit_for_bit(threads, code):
     m = 3 * BLOCK + 5  # blocks of unequal size
     rng = np.random.default_rng(7)
     alphas = rng.uniform(0.1, 3.1, m)  # unsorted: first_returns sorts by step count
-    cs = -9.80665 / rng.uniform(0.5, 3, m)
+    cs = -G / rng.uniform(0.5, 3, m)
     n = rng.integers(1000, 4000, m)
     one = first_returns_lanes(alphas, cs, 1e-2, n) if code == 0 else first_returns_serial(code, 4, alphas, cs, 1e-2, n)
     many = first_returns(code, 4, alphas, cs, 1e-2, n, threads=threads)
@@ -177,7 +178,7 @@ def test_lanes_follow_the_serial_search_in_every_case():
     from pendulab.sweep import first_returns_lanes, first_returns_serial
 
     alphas = np.repeat([0.0, 1e-3, 1.0, 2.5, 3.1, 3.14159], 2 * 3 * 7)
-    cs = np.tile(np.repeat(-9.80665 / np.array([1.0, 0.02]), 3 * 7), 6)
+    cs = np.tile(np.repeat(-G / np.array([1.0, 0.02]), 3 * 7), 6)
     hs = np.tile(np.repeat([1e-1, 1e-2, 1e-3], 7), 12)
     n = np.tile([0, 1, 2, 3, 10, 1000, 100000], 36)
     outcomes = set()

@@ -7,18 +7,7 @@ import pytest
 from pendulab import cases
 from pendulab.errors import InputError
 from pendulab.taylor import simulate, step_count
-
-# Figure 3 of the coursework: l = 1, alpha = pi/4, h = 0.1, 12 significant digits.
-FIGURE3 = {
-    0: (0.0, 0.785398163397, 0.0),
-    1: (0.1, 0.750726419819, -0.693434871572),
-    2: (0.2, 0.647933915928, -1.33755362818),
-    3: (0.3, 0.484585008774, -1.87713178299),
-    18: (1.8, 0.569659507564, 1.6947608797),
-    19: (1.9, 0.712689739829, 1.09586683808),
-    20: (2.0, 0.790214993286, 0.413982837259),
-    21: (2.1, 0.796774928412, -0.297068336875),
-}
+from reference import FIGURE3, G
 
 
 def test_figure3_to_12_significant_digits():
@@ -78,7 +67,7 @@ def test_global_error_is_second_order_against_scipy():
     # Reference trajectory: scipy's DOP853 at tight tolerance (an independent integrator).
     from scipy.integrate import solve_ivp
 
-    length, alpha, g = 3.5, math.pi / 4, 9.80665
+    length, alpha, g = 3.5, math.pi / 4, G
     sol = solve_ivp(lambda t, y: [y[1], -g / length * math.sin(y[0])], (0, 4), [alpha, 0.0],
                     method="DOP853", rtol=1e-13, atol=1e-13, dense_output=True)
     steps = [0.02, 0.01, 0.005, 0.0025]

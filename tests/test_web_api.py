@@ -14,12 +14,13 @@ import numpy as np
 import pytest
 from fastapi.testclient import TestClient
 
-from conftest import ellipk_period
+import reference
 from pendulab import methods, taylor
 from pendulab.cli import main
 from pendulab.crossing import estimate_period
 from pendulab.motion import energy, exact_motion
 from pendulab.web import create_app, limits, parameters, sampling, views
+from reference import G, ellipk_period
 
 
 @pytest.fixture(scope="module")
@@ -27,17 +28,8 @@ def client():
     return TestClient(create_app(), base_url="http://localhost")
 
 
-# Figure 3 of the coursework (l = 1, alpha = pi/4, h = 0.1), 12 significant digits as the coursework prints them.
-FIGURE3 = {
-    0.0: (0.785398163397, 0.0),
-    0.1: (0.750726419819, -0.693434871572),
-    0.2: (0.647933915928, -1.33755362818),
-    0.3: (0.484585008774, -1.87713178299),
-    1.8: (0.569659507564, 1.6947608797),
-    1.9: (0.712689739829, 1.09586683808),
-    2.0: (0.790214993286, 0.413982837259),
-    2.1: (0.796774928412, -0.297068336875),
-}
+# Figure 3 of the coursework by time: t -> (z1, z2).
+FIGURE3 = {t: (z1, z2) for t, z1, z2 in reference.FIGURE3.values()}
 FIG3_QUERY = {"length": "1", "amplitude": "pi/4", "step": "0.1", "t_max": "2.1"}
 P5_QUERY = {"length": "3.5", "amplitude": "4pi/5", "step": "1e-3", "t_max": "10"}
 
@@ -57,7 +49,7 @@ def test_config_lists_the_methods_registered_now(client, monkeypatch):
     body = client.get("/api/config").json()
     assert [m["name"] for m in body["methods"]] == list(taylor.METHODS)
     assert body["limits"] == {"max_steps": 10**7, "max_points": 20_000, "plot_points": 2000}
-    assert body["g_presets"]["earth"] == 9.80665
+    assert body["g_presets"]["earth"] == G
     # A method registered after the app was built shows up, and can be simulated.
     monkeypatch.setitem(methods.METHODS, "taylor2-copy", replace(methods.METHODS["taylor2"], name="taylor2-copy"))
     assert "taylor2-copy" in [m["name"] for m in client.get("/api/config").json()["methods"]]
@@ -73,7 +65,7 @@ def test_period_endpoint_against_elliptic_k(client, amplitude, alpha):
     body = r.json()
     assert body["amplitude"] == pytest.approx(alpha, rel=1e-15, abs=0)
     assert body["period"] == pytest.approx(ellipk_period(3.5, alpha), rel=1e-14)
-    assert body["small_angle"] == pytest.approx(2 * math.pi * math.sqrt(3.5 / 9.80665), rel=1e-15)
+    assert body["small_angle"] == pytest.approx(2 * math.pi * math.sqrt(3.5 / G), rel=1e-15)
 
 
 def test_period_endpoint_takes_g(client):
@@ -184,7 +176,7 @@ def test_exact_overlay_error_and_energy_are_the_librarys(client):
     et = np.array(body["error"]["t"])
     ei = np.rint(et / 1e-2).astype(int)
     assert np.allclose(body["error"]["theta"], full.theta[ei] - exact_motion(1, alpha, et).theta, rtol=0, atol=1e-14)
-    drift = energy(full.theta, full.omega, 1.0) / 9.80665 + math.cos(alpha)  # in m g l
+    drift = energy(full.theta, full.omega, 1.0) / G + math.cos(alpha)  # in m g l
     gt = np.array(body["energy"]["t"])
     assert np.allclose(body["energy"]["drift"], drift[np.rint(gt / 1e-2).astype(int)], rtol=0, atol=1e-14)
     assert body["flags"]["energy_drift_max"] == pytest.approx(np.max(np.abs(drift)), rel=1e-9)

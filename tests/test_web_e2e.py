@@ -20,9 +20,9 @@ from playwright.sync_api import TimeoutError as PlaywrightTimeoutError
 from playwright.sync_api import sync_playwright
 
 from _browser import find_chromium
-from conftest import ellipk_period
 from pendulab import taylor
 from pendulab.web.child import serve_in_child
+from reference import ellipk_period
 
 CHROMIUM_ARGS = [
     "--headless", "--no-sandbox", "--disable-gpu", "--disable-quic", "--no-first-run",
