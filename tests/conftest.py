@@ -10,7 +10,7 @@ from pendulab.cli import main
 #: runs the others (``-m "not slow"``) and ruff and mypy directly; ``make test`` runs all.
 SLOW_FILES = frozenset({
     "test_boundary_cli.py", "test_docs.py", "test_lint.py", "test_notebook.py", "test_packaging.py",
-    "test_report.py", "test_web_e2e.py", "test_web_load.py",
+    "test_report.py", "test_web_e2e.py", "test_web_load.py", "test_web_server.py",
 })
 
 
@@ -22,6 +22,9 @@ SLOW_TESTS = frozenset({
     "test_agm_rounding.py::test_2000_random_pendulums_are_correctly_rounded",
     "test_agm_rounding.py::test_half_angle_cos_is_accurate_to_double_double",
     "test_approximations.py::test_cli_approximations",
+    "test_bounds_adversarial.py::test_docs_table_states_what_a_quick_run_states",
+    "test_bounds_adversarial.py::test_every_search_stays_within_its_bound",
+    "test_bounds_adversarial.py::test_significant_digits_is_the_exact_rule_near_powers_of_ten_and_ties",
     "test_boundary_web.py::test_several_hostile_values_at_once",
     "test_boundary_web.py::test_hostile_value_in_any_parameter",
     "test_cli_core.py::test_figures_leave_matplotlib_global_state_alone",
@@ -35,10 +38,15 @@ SLOW_TESTS = frozenset({
     "test_fast_step.py::test_table_sin_cos_error_against_mpmath",
     "test_group.py::test_length_is_the_correctly_rounded_geometric_mean",
     "test_inputs.py::test_every_parser_returns_or_raises_one_line",
+    "test_key.py::test_cli_csv_is_a_plain_table",
+    "test_key.py::test_cli_pdf_has_the_class_page_and_names",
     "test_motion.py::test_exact_motion_within_its_bound_densely",
     "test_period_certified.py::test_int_text_prints_any_length",
     "test_programs.py::test_each_program_runs_without_pendulab",
     "test_quadrature.py::test_ten_million_subintervals_in_bounded_memory",
+    "test_report_sentences.py::test_names_on_the_cover",
+    "test_report_sentences.py::test_up_is_never_below_and_within_one_unit",
+    "test_report_sentences.py::test_two_periods_print_equal_only_when_equal",
     "test_quadrature.py::test_singular_sum_nodes_keep_their_distance_to_alpha",
     "test_sweep.py::test_sweep_equals_estimate_period_bit_for_bit",
     "test_sweep.py::test_lanes_vectorise",
@@ -46,6 +54,7 @@ SLOW_TESTS = frozenset({
     "test_sweep.py::test_cli_sweep",
     "test_sweep.py::test_unreachable_scheduler_is_one_clear_error",
     "test_web_api.py::test_csv_streams_in_blocks",
+    "test_web_api.py::test_long_run_plots_keep_the_shape",
 })
 
 

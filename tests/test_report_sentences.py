@@ -23,6 +23,7 @@ from pendulab.errors import InputError
 from pendulab.inputs import MAX_NAME, names
 from pendulab.report import load_catalogue
 from pendulab.report.markup import distinct, sci_beside, sci_up, up
+from reference import G
 
 EXAMPLE = (262, 407, 634)
 #: Student numbers as a class has them: 1 to 4 numbers of up to 8 digits.
@@ -92,7 +93,7 @@ def correctly_rounded_period(length: float) -> float:
     """The double nearest to the true period of the doubles l, 4pi/5, g (mpmath, 60 digits)."""
     with mpmath.workdps(60):
         alpha = mpmath.mpf(4 * math.pi / 5)
-        t = 2 * mpmath.pi * mpmath.sqrt(mpmath.mpf(length) / mpmath.mpf(9.80665)) / mpmath.agm(1, mpmath.cos(alpha / 2))
+        t = 2 * mpmath.pi * mpmath.sqrt(mpmath.mpf(length) / mpmath.mpf(G)) / mpmath.agm(1, mpmath.cos(alpha / 2))
         return float(t)
 
 
