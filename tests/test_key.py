@@ -282,3 +282,44 @@ def test_failed_run_keeps_the_older_file(groups_file, tmp_path, monkeypatch):
         main(["key", "--groups", str(groups_file), "--output", str(out)])
     assert out.read_text() == "older"
     assert sorted(p.name for p in tmp_path.iterdir()) == ["groups.txt", "key.json"]
+
+
+def test_the_coursework_programs_reach_the_class_wide_tolerances(key):
+    """The key's tolerances are reachable: the plain coursework programs (numpy/scipy, written
+    from the formulas, independent of the engine) agree with the key's answers to them."""
+    import numpy as np
+
+    from pendulab.coursework import load
+
+    p = load()
+    c = key.to_dict()["common"]
+    one = p["problem1.py"].solve()
+    rel = tolerance("1(b) |e_g|, |e_g|/|g| and the corner extremes").value
+    assert c["problem1"]["g"] == pytest.approx(one["g"], rel=tolerance("1(b) g").value)
+    for mine, theirs in (("abs_error", "abs_error"), ("rel_error", "rel_error"), ("g_min", "g_min"),
+                         ("g_max", "g_max"), ("worst_error", "worst")):
+        assert c["problem1"][mine] == pytest.approx(one[theirs], rel=rel)
+    assert c["problem1"]["significant_digits"] == one["digits"] and c["problem1"]["g_text"] == one["g_text"]
+    p2 = p["problem2.py"]
+    _a, b, _, _ = p2.interval()
+    xs, delta = p2.newton(b)
+    q, _, k_max = p2.quotients(xs, delta)
+    assert math.radians(c["problem2"]["interval_degrees"][0]) <= xs[-1] <= math.radians(c["problem2"]["interval_degrees"][1])
+    assert c["problem2"]["alpha"] == pytest.approx(xs[-1], abs=tolerance("2 alpha").value)
+    assert c["problem2"]["k_max"] == k_max
+    assert c["problem2"]["q"][:k_max + 1] == pytest.approx(q[:k_max + 1], rel=tolerance("2 q_k for k <= k_max").value)
+    p4, taylor, agm = p["problem4.py"], p["taylor.py"], p["agm.py"]
+    for part in ("problem4", "problem4_601"):
+        t, z1, _ = taylor.taylor(p4.L, p4.ALPHA, p4.H, c[part]["t_max"])
+        A, r, _, coef, res = p4.fit(t, z1)
+        assert np.array_equal(A, c[part]["normal_matrix"]) and np.array_equal(r, c[part]["normal_rhs"])
+        assert c[part]["coefficients"] == pytest.approx(list(coef), abs=tolerance("4 coefficients").value)
+        assert c[part]["ssd"] == pytest.approx(math.fsum(res**2), rel=tolerance("4 SSD E(c)").value)
+        assert c[part]["max_deviation"] == pytest.approx(np.max(np.abs(res)), abs=tolerance("4 max deviation").value)
+    p5 = p["problem5.py"]
+    rows = p5.table(agm.t_hat(p5.L, p5.ALPHA))
+    assert [r["n"] for r in c["problem5"]["rows"]] == [n for n, *_ in rows]
+    for mine, (n, s_n, err, rate) in zip(c["problem5"]["rows"], rows):
+        assert mine["estimate"] == pytest.approx(s_n, rel=tolerance("5 S_n for every n").value), n
+        assert mine["error"] == pytest.approx(err, rel=tolerance("5 errors and rates").value), n
+        assert mine["rate"] == (None if rate is None else pytest.approx(rate, rel=tolerance("5 errors and rates").value))
