@@ -553,9 +553,35 @@ def eigenvalue_search(budget: int = 200, seed: int = 1) -> dict:
             "unit": "of the bound", "where": where, "evaluations": budget}
 
 
+# ---------------------------------------------------------------------------- K(k) of the motion
+def quarter_period_error(alpha: float) -> float:
+    """Relative error of ``quarter_period(alpha)``, in ``eps``, against mpmath's elliptic K of the
+    exact double (``m`` held to 40 digits beyond ``1 - m``)."""
+    from pendulab.motion import quarter_period
+
+    gap = max(math.pi - alpha, 1e-17)
+    with mpmath.workdps(40 + int(-2 * math.log10(gap)) if gap < 1 else 40):
+        kp = mpmath.cos(mpmath.mpf(alpha) / 2)
+        ref = mpmath.ellipk(1 - kp * kp)
+        return float(abs(mpmath.mpf(quarter_period(alpha)) / ref - 1)) / EPS
+
+
+def quarter_period_search(budget: int = 2000, seed: int = 1) -> dict:
+    """``quarter_period``: amplitudes log-uniform within 1e-16 .. 1 of pi, tiny and uniform, then
+    climbing over ``alpha``."""
+    rng = random.Random(seed)
+    hi = math.nextafter(math.pi, 0)
+    starts = [(min(hi, rng.choice([math.pi - 10 ** rng.uniform(-16, 0), rng.uniform(0, math.pi),
+                                   10 ** rng.uniform(-300, 0)])),) for _ in range(budget // 2)]
+    worst, where, n = climb(lambda x: quarter_period_error(x[0]), starts,
+                            lambda x, r: (nudge(x[0], r, 0.0, hi),), budget // 2, rng)
+    return {"claim": "quarter_period within 2 eps of K", "worst": worst, "unit": "eps",
+            "where": f"alpha = {where[0]!r}", "evaluations": n}
+
+
 SEARCHES = {"motion": motion_search, "t_hat": t_hat_search, "digits": digits_search, "dense": dense_search,
             "quadrature": quadrature_search, "agm": agm_search, "sincos": sincos_search, "sweep": sweep_search,
-            "eigenvalues": eigenvalue_search}
+            "eigenvalues": eigenvalue_search, "quarter_period": quarter_period_search}
 
 
 def main() -> None:
