@@ -25,4 +25,4 @@ def test_docs_build_without_warnings(tmp_path):
     assert "Problem 5" in tutorial and "<img" in tutorial  # the notebook with its figures
     guide = (out / "guide.html").read_text()
     assert "report.pdf for the built-in example group" in guide and 'id="install"' in guide  # the README
-    assert "four meanings" in (out / "glossary.html").read_text()
+    assert "one name per quantity" in (out / "glossary.html").read_text()

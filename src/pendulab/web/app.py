@@ -4,8 +4,7 @@ Routes
 ------
 ``GET /``                     the explorer page (``static/index.html``)
 ``GET /static/{file}``        the page's own script and style
-``GET /vendor/plotly.min.js`` plotly.js's "basic" bundle (scatter, bar, pie: the traces the page draws),
-                              shipped in ``static/`` with its MIT licence
+``GET /vendor/plotly.min.js`` plotly.js's "basic" bundle (MIT licence, in ``static/``)
 ``GET /api/config``           the methods of :mod:`pendulab.methods` now, g presets, limits
 ``GET /api/period``           exact (AGM) and small-angle periods
 ``GET /api/simulate``         what the page draws (min/max per column), exact motion, estimates, flags
