@@ -21,6 +21,8 @@ import httpx
 import numpy as np
 import pytest
 from fastapi.testclient import TestClient
+from hypothesis import given, settings
+from hypothesis import strategies as st
 
 from pendulab.cli import main
 from pendulab.web import create_app, limits, parameters, sampling, server
@@ -363,3 +365,39 @@ def test_a_client_that_stops_reading_is_dropped():
         assert 0 < got < 10_000_000
         # The server is still there.
         assert httpx.get(f"http://127.0.0.1:{port}/api/config", timeout=10).status_code == 200
+
+
+# ------------------------------------------------------------------ work limits by cost
+
+METHOD_NAMES = ["taylor2", "rk4", "verlet"] + [f"taylor:{p}" for p in range(1, 31)]
+
+
+@settings(max_examples=200, deadline=None)
+@given(method=st.sampled_from(METHOD_NAMES), log_step=st.floats(-7, -1), log_t=st.floats(0, 5))
+def test_every_accepted_run_is_within_the_work_limit(method, log_step, log_t):
+    from pendulab.errors import InputError
+    from pendulab.methods import resolve
+
+    q = {"length": "1", "amplitude": "1", "method": method, "step": f"{10 ** log_step:.6g}", "t_max": f"{10 ** log_t:.6g}"}
+    try:
+        p = parameters.simulation(q)
+    except InputError as exc:
+        assert exc.name in ("step", "t_max") and method in exc.allowed
+        assert round(float(q["t_max"]) / float(q["step"])) > limits.max_steps(resolve(method))
+        return
+    # N = Round(t_max / h) steps, (6), each costing weight steps of (3).
+    assert round(p["t_max"] / p["step"]) * limits.weight(resolve(method)) <= limits.MAX_WORK
+
+
+@pytest.mark.parametrize("method", ["taylor2", "rk4", "taylor:30"])
+def test_the_work_limit_is_exact(method):
+    from pendulab.errors import InputError
+    from pendulab.methods import resolve
+
+    most = limits.max_steps(resolve(method))
+    q = {"length": "1", "amplitude": "1", "method": method, "step": "1e-4"}
+    assert parameters.simulation(q | {"t_max": repr(most * 1e-4)})["t_max"] == pytest.approx(most * 1e-4)
+    with pytest.raises(InputError):
+        parameters.simulation(q | {"t_max": repr((most + 2) * 1e-4)})
+    # A dearer method gets fewer steps, in proportion to its cost.
+    assert most == int(limits.MAX_WORK / limits.weight(resolve(method)))

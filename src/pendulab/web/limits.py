@@ -62,7 +62,7 @@ def check_run(span: float, step: float, method: Method, step_text: str | None = 
     """
     most = max_steps(method)
     n = span / step
-    if n <= most:
+    if n <= most + 0.5:  # N = Round(t_max / h), (6)
         return
     per = f"{most:.3g} steps of {method.name}"
     if t_max_text is not None and abs(math.log10(span / _TYPICAL["t_max"])) > abs(math.log10(_TYPICAL["step"] / step)):
