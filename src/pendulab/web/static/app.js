@@ -602,8 +602,10 @@ async function renderRatio() {
   const p = sims.a.period;
   traces.push(mark(p, COLORS.p, "this pendulum"));
   if (sims.second) traces.push(mark(sims.second, COLORS.second, "second pendulum"));
+  // The legend inside, top left: below 90° every curve is near 1, the corner is empty.
   plot("plot-ratio", traces, layout("Period against amplitude: T(α)/T₀", "α (deg)", "T / T₀", {
-    showlegend: true, margin: { l: 70, r: 14, t: 46, b: 170 },
+    showlegend: true, margin: { l: 70, r: 14, t: 46, b: 52 },
+    legend: { x: 0.01, y: 0.99, xanchor: "left", yanchor: "top", bgcolor: "rgba(255,255,255,0.85)", font: { size: 12 } },
     xaxis: { title: { text: "α (deg)" }, range: [0, 180], dtick: 30, gridcolor: "#eef1f5", automargin: true, tickfont: { size: 13 } },
     yaxis: { title: { text: "T / T₀" }, range: [0.9, 4.2], gridcolor: "#eef1f5", automargin: true, tickfont: { size: 13 } },
   }));
