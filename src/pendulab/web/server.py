@@ -23,7 +23,7 @@ import asyncio
 import logging
 import os
 import time
-from typing import Any
+from typing import Any, ClassVar
 
 import h11
 from uvicorn.protocols.http.h11_impl import H11Protocol
@@ -79,8 +79,9 @@ class GuardedH11(H11Protocol):
     header_timeout: float = HEADER_TIMEOUT
     stall_timeout: float = STALL_TIMEOUT
     max_connections: int = MAX_CONNECTIONS
-    #: Connections still waiting for their request's headers, oldest first (shared by the class).
-    waiting: dict[GuardedH11, float]
+    #: Connections still waiting for their request's headers, oldest first (one list per
+    #: class: :func:`protocol` gives each server its own).
+    waiting: ClassVar[dict[GuardedH11, float]] = {}
 
     def __init__(self, *args: Any, **kwargs: Any):
         super().__init__(*args, **kwargs)
