@@ -84,7 +84,7 @@ def test_approximate_period_and_bad_names():
 def test_cli_approximations(tmp_path, capsys):
     out = tmp_path / "errors.png"
     assert main(["approximations", "--plot", str(out)]) == 0
-    assert out.stat().st_size > 10_000
+    assert out.read_bytes().startswith(b"\x89PNG")  # what it draws: test_plot_draws_each_formulas_errors
     text = capsys.readouterr().out
     assert "lima-arun" in text and "Ganley, Am. J. Phys. 53, 73 (1985)" in text
     assert main(["approximations", "--json"]) == 0
@@ -93,3 +93,20 @@ def test_cli_approximations(tmp_path, capsys):
     assert names[:5] == ["small-angle", "coursework-9", "kidd-fogg", "lima-arun", "ganley"]
     assert main(["approximations", "--plot", str(tmp_path / "no" / "x.png")]) == 2
     assert "--plot" in capsys.readouterr().err
+
+
+def test_plot_draws_each_formulas_errors():
+    """One line per formula through (degrees, |error|), rounding-level errors left out (NaN)."""
+    from pendulab.plots.beyond import approximation_errors as draw
+
+    table = approximation_errors(np.radians([0.5, 10, 45, 90, 170]))
+    ax = draw(None, table)
+    assert [line.get_label().split(":")[0] for line in ax.lines[:len(table.formulas)]] == [f.name for f in table.formulas]
+    rounding = 4 * np.finfo(float).eps
+    for f, line in zip(table.formulas, ax.lines):
+        x, y = line.get_data()
+        assert np.array_equal(x, np.degrees(table.amplitudes))
+        err = np.abs(table.errors[f.name])
+        assert np.array_equal(np.isnan(y), err < rounding)
+        assert np.array_equal(y[~np.isnan(y)], err[err >= rounding])
+    assert ax.get_yscale() == "log"

@@ -125,7 +125,24 @@ def test_cli_sweep(tmp_path, capsys):
     doc = json.loads(capsys.readouterr().out)
     assert [(s["method"], s["step"]) for s in doc["summary"]] == [
         ("taylor2", 0.01), ("taylor2", 0.001), ("taylor:3", 0.01), ("taylor:3", 0.001)]
-    assert pq.read_table(out).num_rows == 36 and plot.stat().st_size > 10_000
+    assert pq.read_table(out).num_rows == 36 and plot.read_bytes().startswith(b"\x89PNG")
+
+
+def test_plot_draws_one_line_per_method_and_step():
+    """What sweep_errors draws: for each (method, step), the found pendulums' |cubic error|
+    against the amplitude in degrees, floored at 1e-17 for the log scale."""
+    from pendulab.plots.beyond import sweep_errors
+
+    r = sweep(np.radians([10, 90, 179.9]), [1e-2, 0.5], methods=["taylor2"])
+    ax = sweep_errors(None, r)
+    assert [line.get_label() for line in ax.lines] == ["taylor2, h = 0.01", "taylor2, h = 0.5"]
+    for line, row in zip(ax.lines, r.summary()):
+        sel = r.select(row["method"], row["step"])
+        ok = sel["status"] == "found"
+        x, y = line.get_data()
+        assert np.array_equal(x, np.degrees(sel["amplitude"][ok]))
+        assert np.array_equal(y, np.maximum(np.abs(sel["cubic_error"][ok]), 1e-17))
+    assert len(ax.lines[1].get_xdata()) < 3  # h = 0.5 at 179.9 deg goes over the top: not drawn
 
 
 @pytest.mark.parametrize("args,needle", [
