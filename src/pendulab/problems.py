@@ -530,16 +530,6 @@ class Problem5(Result):
         """The substituted errors' reference: ``T^`` (8) where it has converged, else ``T``."""
         return _substitution_reference(self.t_hat, self.period)
 
-    @property
-    def t_hat_note(self) -> str | None:
-        """One line where ``T^`` (8) is not the period to double precision, else None."""
-        if self.t_hat_converged:
-            return None
-        return (f"T^ (8) differs from the correctly rounded period T = {self.period!r} s by "
-                f"{self.t_hat - self.period:+.3e} s ({self.t_hat_ulps:+d} ulp, more than the "
-                f"{FIXED_ITERATIONS_ULPS} ulp the loop's rounding can account for): 7 iterations of (7) have not converged this close to pi, "
-                "so errors against T^ include T^'s own")
-
 
 def _ulps_from(t_hat: float, rounded: float) -> int:
     """``t_hat - rounded`` in ulps of ``rounded``: one rule for problem 5's note and its table."""

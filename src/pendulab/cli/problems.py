@@ -7,6 +7,7 @@ import click
 
 from .. import cases, inputs
 from ..errors import InputError
+from ..period import FIXED_ITERATIONS_ULPS
 from ..words import sentence
 from ._common import ANGLE, FIGURE, POSITIVE, Parsed, check_plot_path, emit_json, fmt, g_option, json_option
 
@@ -239,16 +240,15 @@ def quadrature(length, amplitude, ns, substitution, graded, g, as_json):
                 d |= {"substitution_estimate": row.substitution_estimate, "substitution_error": row.substitution_error,
                       "substitution_rate": row.substitution_rate}
             rows.append(d)
-        # t_hat_note: one line where T^ (8) is not the period to double precision, else null.
         extra = {"substitution_reference": "t_hat" if r.t_hat_converged else "period"} if substitution else {}
         emit_json({"length": r.length, "amplitude": r.amplitude, "g": r.g, "t_hat": r.t_hat,
-                   "period": r.period, "t_hat_ulps": r.t_hat_ulps, "t_hat_note": r.t_hat_note,
+                   "period": r.period, "t_hat_ulps": r.t_hat_ulps, "t_hat_note": t_hat_note(r),
                    **extra, "single": r.single, "composite10": r.composite10, "graded": graded, "rows": rows,
                    "answer_5a": answer_5a, "rate_explanation": rate_text})
         return
     click.echo(f"l = {r.length!r}, alpha = {r.amplitude!r}; T^ (8) = {r.t_hat!r} s")
-    if r.t_hat_note:
-        click.echo(r.t_hat_note)
+    if (note := t_hat_note(r)) is not None:
+        click.echo(note)
     # Each error column names its reference: T^ of (8), or T, the correctly rounded period.
     head = f"{'n':>10} {'T ~ S_n':>20} {'|S_n - T^|':>11} {'rate':>6}"
     if substitution:
@@ -263,3 +263,14 @@ def quadrature(length, amplitude, ns, substitution, graded, g, as_json):
         click.echo(line)
     click.echo(f"5(a): {answer_5a}")
     click.echo(rate_text)
+
+
+def t_hat_note(r) -> str | None:
+    """One line where ``T^`` (8) of a :class:`~pendulab.problems.Problem5` is not the period to
+    double precision (``t_hat_converged`` false), else None (``null`` in ``--json``)."""
+    if r.t_hat_converged:
+        return None
+    return (f"T^ (8) differs from the correctly rounded period T = {r.period!r} s by "
+            f"{r.t_hat - r.period:+.3e} s ({r.t_hat_ulps:+d} ulp, more than the "
+            f"{FIXED_ITERATIONS_ULPS} ulp the loop's rounding can account for): 7 iterations of (7) have not "
+            "converged this close to pi, so errors against T^ include T^'s own")
