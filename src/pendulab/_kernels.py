@@ -273,32 +273,41 @@ def step(method, order, z1, z2, h, c):
 
 
 @njit(cache=True, nogil=True)
-def fill_trajectory(method, order, alpha, c, h, z1, z2):
-    """Fill ``z1, z2`` (length ``n + 1``) with ``Z_j = (z1_j, z2_j)`` from ``Z_0 = (alpha, 0)``."""
-    a, b = alpha, 0.0
-    z1[0] = a
-    z2[0] = b
-    for i in range(1, len(z1)):
-        a, b = step(method, order, a, b, h, c)
-        z1[i] = a
-        z2[i] = b
+def drive(method, order, a, b, c, h, i0, i1, stride, n, z1, z2):
+    """Steps ``i0 + 1 .. i1`` of a run of ``n`` steps, from the state ``(a, b)`` of step ``i0``:
+    the one loop of a trajectory, with "what to keep" as its parameters.
 
-
-@njit(cache=True, nogil=True)
-def fill_thinned(method, order, alpha, c, h, n, stride, z1, z2):
-    """Run ``n`` steps from ``Z_0 = (alpha, 0)``; keep ``Z_j`` for ``j = 0, stride, 2 stride, ...`` and ``j = n``."""
-    a, b = alpha, 0.0
-    z1[0] = a
-    z2[0] = b
-    k = 1
-    keep = stride  # the next multiple of stride: no integer division per step (~7 ns of ~30)
-    for i in range(1, n + 1):
+    Keeps the state of every step that is a multiple of ``stride``, and of step ``n``, in
+    ``z1[k], z2[k]`` for ``k = 0, 1, ...``. Returns ``(a, b, k)``: the state of step ``i1`` and
+    how many states were kept. ``i1 <= n``.
+    """
+    k = 0
+    keep = (i0 // stride + 1) * stride  # the next multiple of stride: no division per step (~7 ns of ~30)
+    for i in range(i0 + 1, i1 + 1):
         a, b = step(method, order, a, b, h, c)
         if i == keep or i == n:  # noqa: SIM109 (two compares in the compiled loop, no tuple)
             z1[k] = a
             z2[k] = b
             k += 1
             keep += stride
+    return a, b, k
+
+
+@njit(cache=True, nogil=True)
+def fill_trajectory(method, order, alpha, c, h, z1, z2):
+    """Fill ``z1, z2`` (length ``n + 1``) with ``Z_j = (z1_j, z2_j)`` from ``Z_0 = (alpha, 0)``."""
+    n = len(z1) - 1
+    z1[0] = alpha
+    z2[0] = 0.0
+    drive(method, order, alpha, 0.0, c, h, 0, n, 1, n, z1[1:], z2[1:])
+
+
+@njit(cache=True, nogil=True)
+def fill_thinned(method, order, alpha, c, h, n, stride, z1, z2):
+    """Run ``n`` steps from ``Z_0 = (alpha, 0)``; keep ``Z_j`` for ``j = 0, stride, 2 stride, ...`` and ``j = n``."""
+    z1[0] = alpha
+    z2[0] = 0.0
+    drive(method, order, alpha, 0.0, c, h, 0, n, stride, n, z1[1:], z2[1:])
 
 
 #: The fewest steps for which a simulation of (3) runs the fast kernels below: shorter runs

@@ -12,7 +12,8 @@ phase portrait's and the animation's samples). Memory: O(nb + samples), whatever
 It runs a chunk of steps at a time, carrying its state, so the caller can stop between
 chunks (a request whose client has gone).
 
-:func:`advance` runs a block of steps from a given state, for the CSV that streams.
+The CSV that streams runs the library's trajectory driver (``pendulab._kernels.drive``)
+block by block from a carried state.
 """
 from __future__ import annotations
 
@@ -80,21 +81,3 @@ def scan(method, order, alpha, c, h, n, i0, i1, z, where, samples, s_theta, s_om
             s += 1
     z[0], z[1] = z1, z2
     where[0], where[1], where[2], where[3], where[4] = col, nxt, s, left, bad
-
-
-@njit(cache=True, nogil=True)
-def advance(method, order, z1, z2, c, h, i0, i1, stride, n, out1, out2, out_i):
-    """Steps ``i0+1 .. i1`` from the state ``(z1, z2)`` of step ``i0``.
-
-    Keeps the state of each step ``i`` with ``i % stride == 0`` or ``i == n`` in
-    ``out1, out2, out_i``. Returns ``(z1, z2, kept)`` (the state at ``i1``).
-    """
-    k = 0
-    for i in range(i0 + 1, i1 + 1):
-        z1, z2 = step(method, order, z1, z2, h, c)
-        if i % stride == 0 or i == n:
-            out1[k] = z1
-            out2[k] = z2
-            out_i[k] = i
-            k += 1
-    return z1, z2, k

@@ -292,11 +292,15 @@ def _csv_rows(p: Mapping[str, Any], t: np.ndarray, theta: np.ndarray, omega: np.
 def _csv_block(code: int, order: int, state: tuple[float, float], c: float, h: float,
                i0: int, i1: int, stride: int, n: int,
                full: Mapping[str, Any] | None = None) -> tuple[tuple[float, float], str]:
-    from ._view import advance
+    from .._kernels import drive
 
     size = (i1 - i0) // stride + 2
-    z1, z2, ii = np.empty(size), np.empty(size), np.empty(size, dtype=np.int64)
-    a, b, k = advance(code, order, state[0], state[1], c, h, i0, i1, stride, n, z1, z2, ii)
+    z1, z2 = np.empty(size), np.empty(size)
+    a, b, k = drive(code, order, state[0], state[1], c, h, i0, i1, stride, n, z1, z2)
+    # The steps drive keeps: the multiples of stride in (i0, i1], and n where the run ends here.
+    ii = np.arange((i0 // stride + 1) * stride, i1 + 1, stride)
+    if i1 == n and n % stride:
+        ii = np.append(ii, n)
     if full is not None:
         return (a, b), _csv_rows(full, h * ii[:k], z1[:k], z2[:k])
     t = (h * ii[:k]).tolist()
