@@ -71,11 +71,19 @@ def test_no_return_names_a_t_max_that_works():
         estimate_period(L3, A3, 1e-2, t_max=3.0)
     suggested = float(re.search(r"--t-max ([0-9.e+-]+)", str(err.value)).group(1))
     assert estimate_period(L3, A3, 1e-2, t_max=suggested).cubic > 3.0
+    # The same as data: the interval searched and one that holds the return.
+    assert err.value.t_max == 3.0 and f"{err.value.suggested_t_max:.4g}" == f"{suggested:.4g}"
+    assert estimate_period(L3, A3, 1e-2, t_max=err.value.suggested_t_max).cubic > 3.0
 
 
-def test_going_over_the_top_is_reported():
-    with pytest.raises(LeftOscillationError, match="over the top"):
-        estimate_period(L3, 3.0, 0.5)
+@pytest.mark.parametrize("amplitude, step", [(3.0, 0.5), (3.1, 0.2), (2.6, 0.9)])
+def test_going_over_the_top_is_reported_with_its_time(amplitude, step):
+    with pytest.raises(LeftOscillationError, match="over the top") as err:
+        estimate_period(L3, amplitude, step)
+    # The time it carries is the first point of the simulation with |theta| > pi.
+    tr = simulate(L3, amplitude, step, err.value.t + step)
+    over = np.flatnonzero(np.abs(tr.theta) > math.pi)
+    assert over.size and tr.t[over[0]] == err.value.t
 
 
 @pytest.mark.parametrize(

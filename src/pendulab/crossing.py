@@ -164,12 +164,14 @@ def estimate_period(
             suggest = t0 + 2 * (t_max - t0)
         raise NoReturnError(
             f"the simulation does not return to P = (alpha, 0) within t_max = {t_max:g} s "
-            f"(exact period {exact:.6g} s); try --t-max {suggest:.4g}"
+            f"(exact period {exact:.6g} s); try --t-max {suggest:.4g}", t_max=t_max, suggested_t_max=suggest
         )
     if status == Status.LEFT_OSCILLATION:
+        left = t0 + (j + 1) * step  # t_{j+1} of (6): the first point with |theta| >= pi
         raise LeftOscillationError(
-            f"the discrete pendulum went over the top (|theta| > pi) at t = {t0 + (j + 1) * step:.6g} s: "
-            f"step h = {step:g} is too large for amplitude {alpha:.6g} rad with method {method}; use a smaller step"
+            f"the discrete pendulum went over the top (|theta| > pi) at t = {left:.6g} s: "
+            f"step h = {step:g} is too large for amplitude {alpha:.6g} rad with method {method}; use a smaller step",
+            t=left,
         )
     if status != Status.FOUND:
         raise NumericalError(

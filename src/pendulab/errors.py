@@ -73,11 +73,28 @@ class NumericalError(PendulabError):
 
 
 class NoReturnError(NumericalError):
-    """The simulated pendulum does not come back to P = (alpha, 0) within t_max."""
+    """The simulated pendulum does not come back to P = (alpha, 0) within t_max.
+
+    ``t_max``: the end of the simulated interval (None where no interval helps, as for an
+    amplitude whose motion underflows); ``suggested_t_max``: one that holds the return.
+    """
+
+    def __init__(self, message: str, *, t_max: float | None = None, suggested_t_max: float | None = None):
+        super().__init__(message)
+        self.t_max = t_max
+        self.suggested_t_max = suggested_t_max
 
 
 class LeftOscillationError(NumericalError):
-    """The discrete pendulum went over the top (``|theta| > pi``): no period to find."""
+    """The discrete pendulum went over the top (``|theta| >= pi``): no period to find.
+
+    ``t``: the time of the first point over the top (``t0 + j h``), so a caller needs no
+    second simulation to find it.
+    """
+
+    def __init__(self, message: str, *, t: float | None = None):
+        super().__init__(message)
+        self.t = t
 
 
 class MissingExtraError(ImportError):

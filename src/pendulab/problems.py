@@ -131,13 +131,9 @@ def plot_outcome(length: float, amplitude: float, step: float, exact: float):
     search = PLOT_SEARCH_PERIODS * exact
     try:
         est = estimate_period(length, amplitude, step, search)
-    except LeftOscillationError:
-        import numpy as np
-
-        tr = simulate(length, amplitude, step, search)
-        j = int(np.argmax(np.abs(tr.theta) > math.pi))
-        left_at = float(tr.t[j])
-        return LEAVES, left_at, None, plot_t_max(left_at, step)
+    except LeftOscillationError as exc:  # it carries the time it went over the top
+        assert exc.t is not None
+        return LEAVES, exc.t, None, plot_t_max(exc.t, step)
     except NoReturnError:
         return NO_RETURN, None, None, plot_t_max(search / 1.25, step)
     return RETURNS, None, est, plot_t_max(max(exact, est.bracket[1]), step)
