@@ -92,16 +92,7 @@ def agm_mean(b0: Any, iterations: int | None = None) -> Any:
         ``(a_n + b_n)/2`` after ``n`` iterations of (7).
     """
     if _is_scalar(b0):
-        a, b = 1.0, float(b0)
-        if iterations is None:
-            for _ in range(_MAX_ITERATIONS):
-                if a - b <= _RTOL * a:
-                    break
-                a, b = 0.5 * (a + b), math.sqrt(a * b)
-        else:
-            for _ in range(iterations):
-                a, b = 0.5 * (a + b), math.sqrt(a * b)
-        return 0.5 * (a + b)
+        return _agm(float(b0), iterations)[0]
     import numpy as np
 
     bv = np.array(b0, dtype=float)
@@ -216,12 +207,24 @@ def agm_period(length: Any, amplitude: Any, g: Any = G, iterations: int | None =
 
 def agm_iterations(amplitude: float) -> int:
     """How many iterations of (7) double precision needs at ``amplitude`` (to convergence)."""
-    a, b = 1.0, math.cos(0.5 * v.amplitude("amplitude", amplitude))
-    for k in range(_MAX_ITERATIONS):
-        if a - b <= _RTOL * a:
-            return k
+    return _agm(math.cos(0.5 * v.amplitude("amplitude", amplitude)), None)[1]
+
+
+def _agm(b0: float, iterations: int | None) -> tuple[float, int]:
+    """``(v, k)``: ``v = (a_k + b_k)/2`` after ``k`` iterations of (7) from ``(1, b0)``, in
+    double precision; ``iterations=None`` stops where ``a - b <= 4 eps a`` (at most
+    ``_MAX_ITERATIONS``). The scalar loop of :func:`agm_mean` and :func:`agm_iterations`;
+    ``_kernels.agm_means`` is the same loop compiled for arrays."""
+    a, b = 1.0, b0
+    if iterations is None:
+        for k in range(_MAX_ITERATIONS):
+            if a - b <= _RTOL * a:
+                return 0.5 * (a + b), k
+            a, b = 0.5 * (a + b), math.sqrt(a * b)
+        return 0.5 * (a + b), _MAX_ITERATIONS  # pragma: no cover - unreachable for b0 > 0
+    for _ in range(iterations):
         a, b = 0.5 * (a + b), math.sqrt(a * b)
-    return _MAX_ITERATIONS  # pragma: no cover - unreachable for b0 > 0
+    return 0.5 * (a + b), iterations
 
 
 def _exact_inputs(length: Any, amplitude: Any, g: Any) -> tuple[Exact, Exact, Exact]:
