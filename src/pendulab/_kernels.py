@@ -1,7 +1,8 @@
 """The hot loops: numba kernels on plain floats and arrays.
 
-These are the programs the report prints, so they stay short and literal. Every
-integrator is one branch of :func:`step`; the drivers below run any of them.
+The engine's loops, checked bit for bit against the coursework programs (which the
+report prints; these it does not). Every integrator is one branch of :func:`step`;
+:func:`drive` runs a trajectory of any of them, :func:`first_return` the period search.
 Compiled kernels are cached on disk (``cache=True``): a second run does not compile.
 """
 import math
