@@ -101,6 +101,14 @@ def test_significant_digits_just_below_a_power_of_ten():
     assert adversarial.digits_rule(99.99999999999999, 0.4) == 2
 
 
+@pytest.mark.parametrize("value, error", [(99.99999999999999, 0.4), (9.8, 0.05), (98.0, 0.5), (0.009999999999999998, 4e-4)])
+def test_the_coursework_program_counts_digits_by_the_same_rule(value, error):
+    from pendulab import coursework
+
+    program = coursework.load()["problem1.py"]
+    assert program.significant_digits(value, error) == significant_digits(value, error) == adversarial.digits_rule(value, error)
+
+
 def test_gravity_text_is_plain_decimal(cli):
     r = gravity_estimate(1.5, 0.3, 2.2, 0.01)
     assert r.significant_digits == 1 and r.g_text == "10"  # g = 12.2, error 2.6 <= 5

@@ -19,9 +19,9 @@ def propagate(l, dl, t, dt):
 
 def significant_digits(x, error):
     """The largest n with error <= 0.5 10^(k-n+1), 10^k the place of x's first digit."""
-    k = math.floor(math.log10(abs(x)))
+    k = Decimal(abs(x)).adjusted()  # exact: log10 rounds up just below 10^j
     n = 0
-    while error <= 0.5 * 10.0 ** (k - n):  # then n + 1 digits hold too
+    while Decimal(error) <= Decimal(5).scaleb(k - n - 1):  # then n + 1 digits hold too
         n += 1
     return n
 
@@ -33,7 +33,7 @@ def solve():
     worst = max(g_max - g, g - g_min)
     bound = max(abs_error, worst)
     n = significant_digits(g, bound)
-    place = Decimal(10) ** (math.floor(math.log10(g)) - n + 1)
+    place = Decimal(10) ** (Decimal(g).adjusted() - n + 1)
     g_text = str(Decimal(g).quantize(place, rounding=ROUND_HALF_UP))
     return {"g": g, "dg_dl": dg_dl, "dg_dt": dg_dt, "abs_error": abs_error,
             "rel_error": rel_error, "g_min": g_min, "g_max": g_max, "worst": worst,
