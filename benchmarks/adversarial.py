@@ -99,7 +99,7 @@ def motion_ratio(x: tuple[float, float, float, float]) -> float:
 def motion_starts(rng: random.Random, n: int) -> list[tuple[float, float, float, float]]:
     """Where the error sources line up: amplitudes near pi and 0, times at zero crossings
     (a quarter and three quarters of a period, where ``|d theta/du| = 2k`` is largest) and
-    turning points, after up to 10^10 periods, lengths and g over decades."""
+    turning points, after up to 10^10 periods (a fifth before 0), lengths and g over decades."""
     from pendulab.period import agm_period
 
     near_pi = [math.pi - 10.0**-e for e in range(1, 16)] + [math.nextafter(math.pi, 0)]
@@ -112,7 +112,8 @@ def motion_starts(rng: random.Random, n: int) -> list[tuple[float, float, float,
         period = float(agm_period(length, alpha, g))
         cycles = rng.choice([0, rng.randrange(1, 10), 10 ** rng.uniform(1, 10)])
         phase = rng.choice([0.25, 0.75, 0.0, 0.5, rng.random()])
-        starts.append((length, g, alpha, (math.floor(cycles) + phase) * period))
+        sign = -1 if rng.random() < 0.2 else 1  # the motion is even in t: negative times too
+        starts.append((length, g, alpha, sign * (math.floor(cycles) + phase) * period))
     return starts
 
 
