@@ -288,3 +288,18 @@ def test_every_comment_has_a_translation():
         for i in sorted(spans):
             if prose.search(lines[i].split("#", 1)[-1]):
                 assert lines[i] in table, (name, lines[i])
+
+
+def test_problem4_on_the_programs_data_is_the_engines():
+    """The report hands the program's Taylor data to the engine (no compiled kernel): the
+    same doubles, so the same fit; data of the wrong length is refused."""
+    from pendulab.errors import InputError
+
+    p4 = P["problem4.py"]
+    t, z1, z2 = P["taylor.py"].taylor(p4.L, p4.ALPHA, p4.H, 4)
+    given, own = problems.problem4(taylor_data=(t, z1, z2)), problems.problem4()
+    assert np.array_equal(given.data.theta, own.data.theta) and np.array_equal(given.data.t, own.data.t)
+    assert np.array_equal(given.fit.coefficients, own.fit.coefficients)
+    assert given.exact_deviation == own.exact_deviation and given.taylor_error == own.taylor_error
+    with pytest.raises(InputError, match="taylor_data"):
+        problems.problem4(taylor_data=(t[:-1], z1[:-1], z2[:-1]))

@@ -2,7 +2,7 @@
 
 After a fresh install numba compiles each kernel the first time it runs (seconds); the
 compiled code is then cached on disk. Commands that will certainly need the Taylor
-kernels (``pendulab serve``, ``pendulab report``) start this thread first, so that the
+kernels (``pendulab serve``) start this thread first, so that the
 compilation overlaps their imports and set-up instead of delaying the first result. With
 a filled cache the thread only loads the kernels. The calls below use the argument types
 of the real calls (Python int and float, C-contiguous float64 arrays), so they compile the

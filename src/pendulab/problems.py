@@ -397,8 +397,14 @@ def problem4(
     t_max: float | None = None,
     decimals: int | None = cases.PROBLEM4_ROUND,
     g: float = cases.G,
+    taylor_data: tuple | None = None,
 ) -> Problem4:
-    """Problem 4: data by the Taylor algorithm, fit by (10) through rounded normal equations."""
+    """Problem 4: data by the Taylor algorithm, fit by (10) through rounded normal equations.
+
+    ``taylor_data``: the lists ``(t, z1, z2)`` of (3) for these inputs when already computed
+    (the report passes the coursework program's, the same doubles, so it needs no compiled
+    kernel); the simulation is then not run again.
+    """
     import numpy as np
 
     from .lsq import TRIG_BASIS, TRIG_LABELS, evaluate, least_squares
@@ -415,13 +421,20 @@ def problem4(
     # Work by arithmetic first: at most PROBLEM4_MAX_STEPS data steps (the exact motion is
     # then evaluated on 20 times as many points), and at least one point per term of (10).
     _, t_end, h = v.time_span(0.0, t_max, v.positive("step", step))
-    if v.steps_within("step", 0.0, t_end, h, PROBLEM4_MAX_STEPS) + 1 < len(TRIG_BASIS):
+    n = v.steps_within("step", 0.0, t_end, h, PROBLEM4_MAX_STEPS)
+    if n + 1 < len(TRIG_BASIS):
         gaps = len(TRIG_BASIS) - 1
         why = f"so that the data has at least {len(TRIG_BASIS)} points, one per coefficient of (10)"
         raise InputError("step", step, f"<= t_max/{gaps} = {t_end / gaps:.6g} s {why}", mentions=("t_max",),
                          alternative=InputError("t_max", t_max, f">= {gaps} x step = {gaps * h:.6g} s {why}",
                                                 mentions=("step",)))
-    data = simulate(length, amplitude, step, t_max, 0.0, g)
+    if taylor_data is None:
+        data = simulate(length, amplitude, step, t_max, 0.0, g)
+    else:
+        t, z1, z2 = (np.asarray(a, dtype=float) for a in taylor_data)
+        if not len(t) == len(z1) == len(z2) == n + 1:
+            raise InputError("taylor_data", f"{len(t)} points", f"the {n + 1} points t_0, ..., t_N of (6)")
+        data = Trajectory(t, z1, z2, float(length), float(amplitude), float(g), float(h), 0.0)
     if not np.all(np.isfinite(data.theta)):
         raise NumericalError(
             f"the Taylor data overflowed (theta is not finite): step h = {data.step:g} s is too large for "

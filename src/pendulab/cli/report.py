@@ -51,9 +51,6 @@ def report(more: tuple[str, ...], students: str, lang: str, output: str, names: 
 
     for package in ("typst", "matplotlib"):
         require(package, "pendulab report")
-    from .._warm import warm_kernels
-
-    warm_kernels(thinned=False)  # the two kernels the report calls, compiled while it starts
     from ..report import build_report
 
     ctx = click.get_current_context()

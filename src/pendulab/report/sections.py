@@ -267,16 +267,16 @@ def problem4(doc: Doc, students: Sequence[int]) -> None:
     t_hat = p["agm.py"].t_hat(p4.L, p4.ALPHA)
     fits = {}
     for t_max in (math.ceil(t_hat), PROBLEM4_ALT_T_MAX):
-        t, z1, _ = taylor.taylor(p4.L, p4.ALPHA, p4.H, t_max)
+        t, z1, z2 = taylor.taylor(p4.L, p4.ALPHA, p4.H, t_max)
         a, rhs, diag, coef, res = p4.fit(t, z1)
         j = int(np.argmax(np.abs(res)))
-        fits[t_max] = {"t": t, "z1": z1, "a": a, "r": rhs, "diag": diag, "coef": coef, "t_max": t_max,
+        fits[t_max] = {"t": t, "z1": z1, "z2": z2, "a": a, "r": rhs, "diag": diag, "coef": coef, "t_max": t_max,
                        "ssd": math.fsum(res**2), "maxdev": abs(res[j]), "argmax": t[j]}
     main, other = fits[math.ceil(t_hat)], fits[PROBLEM4_ALT_T_MAX]
-    # Beyond the coursework, from the engine: the eigenvalues, the rounding's effect, the
-    # SVD solution, the exact motion between the data points; the figures.
-    r = problems.problem4()
-    alt = problems.problem4(t_max=PROBLEM4_ALT_T_MAX)
+    # Beyond the coursework, from the engine on the program's data: the eigenvalues, the
+    # rounding's effect, the SVD solution, the exact motion between the data points; the figures.
+    r = problems.problem4(taylor_data=(main["t"], main["z1"], main["z2"]))
+    alt = problems.problem4(t_max=PROBLEM4_ALT_T_MAX, taylor_data=(other["t"], other["z1"], other["z2"]))
     f = r.fit
     n = len(main["t"]) - 1
     doc.tables["p4a"] = [[integer(j), fixed(main["t"][j], 2), num(main["z1"][j], 12)] for j in range(n - 9, n + 1)]

@@ -1,0 +1,109 @@
+"""The warm report against the import floor, side by side in one run, as a ratio.
+
+``pendulab report`` for the example group (after a first run, not timed, that fills the
+caches: the operating system's files, matplotlib's fonts) against ``python -c "import numpy, matplotlib.pyplot, typst"``: the least any
+program that computes, draws and typesets must pay. The two commands take turns, and the
+best of each is kept (wall time, then CPU time: user + sys of the child). On a machine
+shared with other work the wall time mostly measures the wait for a core, the CPU time
+what the command itself spent. Then where the report's own time goes, in one process
+(CPU time per section, of the figures alone, and of the typesetting).
+
+Target: the warm report at most 2.5 times the floor.
+
+Run: ``.venv/bin/python benchmarks/bench_report.py [--repeat N]``.
+"""
+from __future__ import annotations
+
+import os
+import resource
+import subprocess
+import sys
+import tempfile
+import time
+
+PY = sys.executable
+EXAMPLE = (262, 407, 634)
+
+
+def run(cmd: list[str]) -> tuple[float, float]:
+    """Wall time and CPU time (user + sys) of one run of ``cmd``, s."""
+    before = resource.getrusage(resource.RUSAGE_CHILDREN)
+    t = time.perf_counter()
+    subprocess.run(cmd, check=True, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
+    elapsed = time.perf_counter() - t
+    after = resource.getrusage(resource.RUSAGE_CHILDREN)
+    return elapsed, (after.ru_utime - before.ru_utime) + (after.ru_stime - before.ru_stime)
+
+
+def report_rows(repeat: int = 5) -> list[dict]:
+    with tempfile.TemporaryDirectory(prefix="pendulab-bench-report-") as out:
+        cmds = {
+            "report": [PY, "-m", "pendulab", "report", "--output", os.path.join(out, "report.pdf")],
+            "floor": [PY, "-c", "import numpy, matplotlib.pyplot, typst"],
+        }
+        run(cmds["report"])  # fills numba's cache (and the OS's file cache): the warm report
+        best = {k: [float("inf"), float("inf")] for k in cmds}
+        for _ in range(repeat):  # taking turns, best of each
+            for k, c in cmds.items():
+                wall, cpu = run(c)
+                best[k] = [min(best[k][0], wall), min(best[k][1], cpu)]
+    peer = "import numpy, mpl.pyplot, typst"
+    return [
+        {"what": "pendulab report, warm (wall s)", "ours": best["report"][0], "peer_name": peer,
+         "peer": best["floor"][0], "target": "<= 2.5", "lower": True},
+        {"what": "  same, CPU time (user + sys, s)", "ours": best["report"][1], "peer_name": peer,
+         "peer": best["floor"][1], "target": "<= 2.5", "lower": True},
+    ]
+
+
+def breakdown() -> dict[str, float]:
+    """CPU time of each section, of the figures within them, and of the typesetting (s)."""
+    from pathlib import Path
+
+    from pendulab import coursework
+    from pendulab.report import builder, figures, sections
+
+    coursework.load()
+    drawn = [0.0]
+    draw = figures.draw
+
+    def timed(*args, **kwargs):
+        t = time.process_time()
+        try:
+            return draw(*args, **kwargs)
+        finally:
+            drawn[0] += time.process_time() - t
+
+    figures.draw = timed
+    out = {}
+    try:
+        with tempfile.TemporaryDirectory() as folder:
+            doc = builder.new_doc(EXAMPLE, "en", Path(folder))
+            for label, section in sections.SECTIONS:
+                t = time.process_time()
+                section(doc, EXAMPLE)
+                out[label] = time.process_time() - t
+            t = time.process_time()
+            builder.compile_pdf(doc, EXAMPLE)
+            out["typesetting"] = time.process_time() - t
+    finally:
+        figures.draw = draw
+    out["(of which figures)"] = drawn[0]
+    return out
+
+
+def main() -> None:
+    sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+    from _peers import print_table
+
+    repeat = int(sys.argv[sys.argv.index("--repeat") + 1]) if "--repeat" in sys.argv else 5
+    print(f"load average {os.getloadavg()[0]:.2f} (1 min), {os.cpu_count()} CPUs")
+    print_table(report_rows(repeat))
+    print("\nWhere the report's time goes (CPU s, one process, after the imports):")
+    for label, seconds in breakdown().items():
+        print(f"  {label:20s} {seconds:6.2f}")
+    print(f"load average now {os.getloadavg()[0]:.2f}")
+
+
+if __name__ == "__main__":
+    main()
