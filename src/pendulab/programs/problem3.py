@@ -46,6 +46,7 @@ def inverse_cubic(x, y):
 
 def period(l, h, exact):
     """3(c)-(d): the bracket, the zero of the line through j and j+1, and p(0)."""
+    # up to 1.5 T^ (8) + 4h: the return to P and the two steps after it are in the lists
     t, z1, z2 = taylor(l, ALPHA, h, 1.5 * exact + 4 * h)
     j = sign_change(z1, z2)[0]
     nodes = [j - 1, j, j + 1, j + 2, j - 2]  # four around the change; a fifth for e(0)
@@ -62,6 +63,7 @@ def plot_t_max(l, exact, h=0.2):
         event = max(exact, t[j + 1])
     else:  # over the top at t[over], or neither within 4 T^
         event = t[over] if over is not None else SEARCH * exact / 1.25
+    # rounded to 9 decimals first: t_24 = 24 * 0.2 gives 1.25 t / h = 30.000000000000004
     return h * math.ceil(round(1.25 * event / h, 9)), j, over, t
 
 def order(e0, e1, h0, h1):
