@@ -75,6 +75,7 @@ def sandbox(tmp_path_factory):
     import pendulab.key
     import pendulab.report
     import pendulab.report.key
+    import pendulab.web.server
 
     (folder / "groups.txt").write_text("262 407 634\n", encoding="utf-8")
     with pytest.MonkeyPatch.context() as mp, contextlib.chdir(folder):
@@ -82,6 +83,7 @@ def sandbox(tmp_path_factory):
         mp.setattr(pendulab.key, "answer_key", lambda *a, **k: None)
         mp.setattr(pendulab.report.key, "write_key", lambda *a, **k: None)
         mp.setattr(uvicorn, "run", lambda *a, **k: None)
+        mp.setattr(pendulab.web.server, "run", lambda *a, **k: None)  # serve's own runner
         mp.setattr(socket, "getaddrinfo", numeric_only)
         for command in COMMANDS:  # imports and compiled kernels loaded before anything is timed
             run_in_process([command, *BASE[command], *(["262"] if command == "length" else [])])
