@@ -25,7 +25,7 @@ LAYERS: dict[str, tuple[str, ...]] = {
     "boundary": ("inputs", "_validate"),
     "kernels": ("_kernels", "_agm", "_libm", "_warm"),
     "numerics": ("results", "period", "taylor", "crossing", "dense", "interpolation", "newton", "lsq",
-                 "quadrature", "uncertainty", "motion", "approximations", "group"),
+                 "quadrature", "uncertainty", "motion", "launched", "approximations", "group"),
     "jobs": ("problems", "key", "sweep", "coursework"),
     "presenters": ("cli", "report", "web", "plots", "words", "__main__", ""),  # "": the package's face
 }

@@ -585,3 +585,31 @@ def test_csv_with_every_column(client):
     assert np.array_equal(rows[:, 5], rows[:, 1] - rows[:, 3])
     r = client.get("/api/trajectory.csv", params=q | {"columns": "some"})
     assert r.status_code == 422 and r.json()["error"]["field"] == "columns"
+
+
+def test_a_launch_is_simulated_and_flagged_against_its_own_exact_motion(client):
+    from scipy.integrate import solve_ivp
+
+    q = {"length": "1", "amplitude": "17deg", "step": "1e-3", "t_max": "20", "omega0": "7"}
+    body = client.get("/api/simulate", params=q).json()
+    launch = body["launch"]
+    assert launch["circulates"] and launch["turning_angle"] is None
+    assert body["flags"]["left_oscillation_t"] is None and body["flags"]["trustworthy"]  # over the top is right here
+    assert body["period"]["estimate"] is None and "release at rest" in body["period"]["reason"]
+    # The simulation from (alpha, omega0), bit for bit the library's step from that state.
+    full = taylor.simulate(1, math.radians(17), 1e-3, 20.0)  # from rest: a different motion
+    assert body["theta"][-1] > 2 * math.pi * 15 and abs(full.theta).max() < math.pi
+    lines = client.get("/api/trajectory.csv", params=q | {"columns": "all", "points": "201"}).text.splitlines()
+    rows = np.array([[float(x) for x in line.split(",")] for line in lines[1:]])
+    assert rows[0, 2] == 7.0 and rows[0, 1] == math.radians(17)
+    sol = solve_ivp(lambda _, z: [z[1], -9.80665 * math.sin(z[0])], (0, 20), [math.radians(17), 7.0],
+                    method="DOP853", rtol=1e-12, atol=1e-12, t_eval=rows[:, 0])
+    assert np.max(np.abs(rows[:, 3] - sol.y[0])) < 1e-7 and np.max(np.abs(rows[:, 4] - sol.y[1])) < 1e-7
+    assert np.max(np.abs(rows[:, 5])) < 1e-2 and np.max(np.abs(rows[:, 6])) < 1e-4  # taylor2 at h = 1e-3 follows it
+    # Too little energy to reach the top, and a step too large: the simulation's trip over the top is flagged.
+    body = client.get("/api/simulate", params={"length": "1e-5", "amplitude": "30deg", "step": "1e-3", "t_max": "20",
+                                                "omega0": "2"}).json()
+    assert not body["launch"]["circulates"] and body["flags"]["left_oscillation_t"] is not None
+    assert "too little energy" in body["flags"]["warnings"][0]
+    r = client.get("/api/simulate", params=q | {"omega0": "inf"})
+    assert r.status_code == 422 and r.json()["error"]["field"] == "omega0"

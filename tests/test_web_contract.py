@@ -69,6 +69,8 @@ ANSWERS = [
     ("/api/motion", {"length": "20", "amplitude": "120deg", "t_max": "20"}),
     ("/api/motion", {"length": "1", "amplitude": "0", "t_max": "1e300"}),
     ("/api/period_curve", {}),
+    ("/api/simulate", {"length": "1", "amplitude": "17deg", "step": "1e-3", "t_max": "20", "omega0": "7"}),  # goes round
+    ("/api/simulate", {"length": "1", "amplitude": "17deg", "step": "1e-3", "t_max": "20", "omega0": "-2"}),  # swings
 ]
 
 

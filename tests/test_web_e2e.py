@@ -14,6 +14,7 @@ import time
 from pathlib import Path
 from urllib.parse import parse_qs, urlparse
 
+import mpmath
 import numpy as np
 import pytest
 from playwright.sync_api import TimeoutError as PlaywrightTimeoutError
@@ -710,8 +711,6 @@ def test_second_pendulum_swings_beside_with_its_exact_period_to_scale(page, serv
 
 
 def test_period_ratio_curve_and_its_approximations(page, server):
-    import mpmath
-
     page.goto(server + "/?length=3.5&amplitude=144&unit=deg&step=1e-3&t_max=20")
     page.wait_for_function("document.getElementById('plot-ratio').data && document.getElementById('plot-ratio').data.length >= 7",
                            timeout=60_000)
@@ -737,6 +736,11 @@ def test_photogate_times_the_swing(browser, server):
         measured = float(pg.get_attribute("#gate", "data-period"))
         assert measured == pytest.approx(ellipk_period(1, math.pi / 6), rel=2e-3)
         assert "exact" in pg.locator("#gate").text_content()
+        # Over the top (theta'(0) = 7 rad/s): every pass is one more turn, the same way.
+        pg.goto(server + "/?length=1&amplitude=17&unit=deg&step=1e-3&t_max=60&omega0=7")
+        pg.wait_for_function("document.getElementById('gate').dataset.period", timeout=20_000)
+        turn = float(pg.locator("#period-exact").text_content())
+        assert float(pg.get_attribute("#gate", "data-period")) == pytest.approx(turn, rel=2e-3)
     finally:
         context.close()
 
@@ -801,3 +805,37 @@ def test_csv_has_every_shown_column_for_both_methods(page, server, tmp_path):
             assert de == pytest.approx(om**2 / (2 * 9.80665) - math.cos(th) + math.cos(math.pi / 4), abs=1e-15)
     # Figure 3 of the coursework, t = 2.1: z1 = 0.796774928412 (taylor2, h = 0.1).
     assert float(tables[0][-1].split(",")[1]) == pytest.approx(0.796774928412, rel=1e-11)
+
+
+def test_a_launch_goes_over_the_top_and_the_exact_motion_follows(page, server):
+    # l = 1 m, 17 deg, theta'(0) = 7 rad/s: k = 1.147 > 1, the pendulum goes round.
+    page.goto(server + "/?length=1&amplitude=17&unit=deg&step=1e-3&t_max=20&omega0=7&paused=1&t=0")
+    page.wait_for_selector("#period-label:has-text('one turn')")
+    w = math.sqrt(9.80665)
+    k = math.hypot(math.sin(math.radians(17) / 2), 7 / (2 * w))
+    m = 1 / k**2
+    with mpmath.workdps(30):  # a turn takes 2 K(1/k^2)/(k w) (DLMF 22.19), mpmath's K
+        turn = float(2 * mpmath.ellipk(m) / (k * w))
+    assert float(page.locator("#period-exact").text_content()) == pytest.approx(turn, rel=1e-11)
+    assert not page.locator("#flags").text_content()  # going over the top is right here
+    # The exact curve on theta(t) grows by 2 pi a turn, with the simulation on it (scipy DOP853 as reference).
+    from scipy.integrate import solve_ivp
+
+    page.wait_for_function("document.getElementById('plot-theta').data && document.getElementById('plot-theta').data.length >= 2")
+    ex = page.evaluate("document.getElementById('plot-theta').data[1]")
+    t, th = np.array(ex["x"]), np.array(ex["y"])
+    sol = solve_ivp(lambda _, z: [z[1], -9.80665 * math.sin(z[0])], (0, 20), [math.radians(17), 7.0],
+                    method="DOP853", rtol=1e-12, atol=1e-12, t_eval=t)
+    assert np.max(np.abs(th - sol.y[0])) < 1e-7 and th[-1] > 2 * math.pi * 15
+    assert parse_qs(urlparse(page.url).query)["omega0"] == ["7"]
+    # Less of it: it swings, to its turning angle 2 asin(k), and sits there on the T(alpha)/T0 curve.
+    page.fill("#omega0", "2")
+    page.wait_for_selector("#period-label:has-text('turning angle')")
+    k = math.hypot(math.sin(math.radians(17) / 2), 2 / (2 * w))
+    assert float(page.locator("#period-exact").text_content()) == pytest.approx(ellipk_period(1, 2 * math.asin(k)), rel=1e-11)
+    page.wait_for_function("document.getElementById('plot-ratio').data.some(t => t.name === 'this pendulum' && "
+                           f"Math.abs(t.x[0] - {math.degrees(2 * math.asin(k))}) < 1e-9)")
+    # A bad value is named under its field.
+    page.fill("#omega0", "fast")
+    page.wait_for_selector("#omega0-error:not([hidden])")
+    assert page.locator("#omega0-error").text_content().startswith("omega0 = fast")

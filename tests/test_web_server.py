@@ -293,6 +293,9 @@ def test_the_streamed_pass_stops_between_chunks():
     {"length": "1", "amplitude": "3", "step": "1.9", "t_max": "2000", "method": "taylor:30"},
     {"length": "1e300", "amplitude": "1", "step": "1e-3", "t_max": "20"},
     {"length": "1", "amplitude": "3.14159265358979", "step": "0.1", "t_max": "20"},
+    {"length": "1", "amplitude": "1", "step": "1e-3", "t_max": "20", "omega0": "1e300"},  # k^2 overflows
+    {"length": "1e-300", "amplitude": "1", "step": "1e-3", "t_max": "20", "g": "1e300", "omega0": "-3"},
+    {"length": "1", "amplitude": "0", "step": "1e-3", "t_max": "20", "omega0": "6.2632"},  # near the separatrix
 ])
 def test_no_runtime_warning_reaches_the_log(client, query):
     # A warning is an error here: the request would answer 500.

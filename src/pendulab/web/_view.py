@@ -26,7 +26,7 @@ from .._kernels import step
 
 @njit(cache=True, nogil=True)
 def scan(method, order, alpha, c, h, n, i0, i1, z, where, samples, s_theta, s_omega,
-         i_lo, i_hi, th_lo, th_hi, om_lo, om_hi, e_i_lo, e_i_hi, e_lo, e_hi):
+         i_lo, i_hi, th_lo, th_hi, om_lo, om_hi, e_i_lo, e_i_hi, e_lo, e_hi, omega0=0.0):
     """Steps ``i0 .. i1 - 1`` of a run of ``n`` steps from ``(alpha, 0)``: one chunk of the pass.
 
     ``z``: the state ``(theta, theta')`` of step ``i0 - 1`` (of step 0 when ``i0 = 0``),
@@ -38,7 +38,7 @@ def scan(method, order, alpha, c, h, n, i0, i1, z, where, samples, s_theta, s_om
     ``i_lo[b]``/``i_hi[b]``: the first step of the column's smallest ``theta``, the last of its
     largest (both kept when ``theta`` is constant), with ``theta`` and ``theta'`` there;
     ``-1`` where every value is NaN.
-    The energy drift is ``(E - E0)/(m g l) = theta'^2 l/(2g) - cos(theta) + cos(alpha)``
+    The energy drift is ``(E - E0)/(m g l) = theta'^2 l/(2g) - cos(theta) + cos(alpha) - omega0^2 l/(2g)``
     (``c = -g/l``). ``samples``: sorted step indices whose state goes to ``s_theta, s_omega``.
     ``left``: the first step with ``|theta| >= pi`` (the pendulum went over the top, which
     the exact motion from rest below pi never does); ``bad``: the first non-finite state;
@@ -49,7 +49,7 @@ def scan(method, order, alpha, c, h, n, i0, i1, z, where, samples, s_theta, s_om
     col, nxt, s, left, bad = where[0], where[1], where[2], where[3], where[4]
     ns = len(samples)
     z1, z2 = z[0], z[1]
-    e0 = math.cos(alpha)
+    e0 = math.cos(alpha) - omega0 * omega0 * scale
     for i in range(i0, i1):
         if i > 0:
             z1, z2 = step(method, order, z1, z2, h, c)

@@ -169,6 +169,8 @@ Step = Annotated[str | None, Query(description="Step h > 0, s: 1e-3")]
 TMax = Annotated[str | None, Query(description="End time t_max > step, s: 20")]
 MethodName = Annotated[str | None, Query(description="Integrator: taylor2 (default), rk4, verlet, taylor:P (P in 1..30)")]
 Points = Annotated[str | None, Query(description="At most this many points returned (evenly thinned), 2..1000000")]
+Omega0 = Annotated[str | None, Query(description="Initial angular velocity theta'(0), rad/s (default 0: "
+                                            "released at rest); with enough the pendulum goes over the top")]
 Columns = Annotated[str | None, Query(description="CSV columns: state (t, theta, omega; default) or all "
                                              "(also theta_exact, omega_exact, the global error, the energy error)")]
 Steps = Annotated[str | None, Query(description="Steps h, comma-separated, 1 to 40 (default 13 steps from 0.1 to 1e-4)")]
@@ -245,9 +247,10 @@ def create_app(allowed_hosts: Iterable[str] = guard.LOCAL_HOSTS) -> FastAPI:
     @app.get("/api/simulate", response_model=models.SimulateAnswer, responses=bad)
     async def simulate(request: Request, length: Length = None, amplitude: Amplitude = None, unit: Unit = None, g: Gravity = None,
                        step: Step = None, t_max: TMax = None, method: MethodName = None,
-                       points: Points = None) -> Response:
+                       points: Points = None, omega0: Omega0 = None) -> Response:
         return await heavy(request, views.simulate_view, {"length": length, "amplitude": amplitude, "unit": unit, "g": g,
-                                               "step": step, "t_max": t_max, "method": method, "points": points})
+                                               "step": step, "t_max": t_max, "method": method, "points": points,
+                                               "omega0": omega0})
 
     @app.get("/api/convergence", response_model=models.ConvergenceAnswer, responses=bad)
     async def convergence(request: Request, length: Length = None, amplitude: Amplitude = None, unit: Unit = None, g: Gravity = None,
@@ -272,9 +275,9 @@ def create_app(allowed_hosts: Iterable[str] = guard.LOCAL_HOSTS) -> FastAPI:
     @app.get("/api/trajectory.csv", response_class=StreamingResponse, responses=csv | bad)
     async def trajectory_csv(length: Length = None, amplitude: Amplitude = None, unit: Unit = None,
                              g: Gravity = None, step: Step = None, t_max: TMax = None, method: MethodName = None,
-                             points: Points = None, columns: Columns = None) -> Response:
+                             points: Points = None, columns: Columns = None, omega0: Omega0 = None) -> Response:
         params = {"length": length, "amplitude": amplitude, "unit": unit, "g": g, "step": step, "t_max": t_max,
-                  "method": method, "points": points, "columns": columns}
+                  "method": method, "points": points, "columns": columns, "omega0": omega0}
         try:
             blocks, name = views.trajectory_csv(_given(params))
         except InputError as exc:

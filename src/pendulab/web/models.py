@@ -160,6 +160,17 @@ class State(_Model):
     omega: Values
 
 
+class Launch(_Model):
+    """A pendulum released with an angular velocity (``omega0`` given and not 0): pendulab.launched."""
+
+    omega0: float = Field(description="theta'(0), rad/s")
+    k: float = Field(description="sqrt(E0/(2 m g l)): below 1 it swings, above 1 it goes round")
+    circulates: bool
+    period: float = Field(description="s: the exact period, or the time for one turn when it goes round")
+    turning_angle: float | None = Field(description="2 asin(k), rad, where it swings; null when it goes round")
+    turning_angle_deg: float | None
+
+
 class SimulateAnswer(_Model):
     """``GET /api/simulate``: what the page draws; every list at most ``limits.max_points`` long."""
 
@@ -179,6 +190,7 @@ class SimulateAnswer(_Model):
     frames: Frames
     exact_frames: State = Field(description="the exact motion's state at the frames' times")
     exact_phase: State = Field(description="one period of the exact orbit in the phase plane")
+    launch: Launch | None = Field(description="null for a release at rest")
     flags: Flags
     period: PeriodWithEstimate
 

@@ -39,6 +39,7 @@ ALLOWED = {
     "t_max": "a finite number > 0 (s), such as 20",
     "g": f"a finite number > 0 (m/s^2), such as {G_TEXT}",
     "unit": "rad or deg: the unit of a plain-number amplitude",
+    "omega0": "a finite number (rad/s), such as 2 or -1.5: the angular velocity at t = 0",
     "columns": "state (t, theta, omega) or all (also the exact motion, the global error and the energy error)",
 }
 
@@ -97,6 +98,11 @@ def pendulum(params: Mapping[str, str]) -> dict[str, Any]:
     }
 
 
+def omega0(params: Mapping[str, str]) -> float:
+    """The initial angular velocity theta'(0), rad/s (0 when not given)."""
+    return float(inputs.real("omega0", text(params, "omega0", "0"), ALLOWED["omega0"]))
+
+
 def simulation(params: Mapping[str, str]) -> dict[str, Any]:
     """All inputs of a simulation: pendulum, ``step``, ``t_max``, ``method``; its work within the limits."""
     from ..taylor import step_count
@@ -106,6 +112,7 @@ def simulation(params: Mapping[str, str]) -> dict[str, Any]:
     p["t_max"] = positive(params, "t_max")
     m = method(params)
     p["method"] = m.name
+    p["omega0"] = omega0(params)
     if not p["step"] < p["t_max"]:
         raise InputError("step", inputs.shown(text(params, "step")), f"< t_max = {p['t_max']:g} s")
     limits.check_run(p["t_max"], p["step"], m, text(params, "step"), text(params, "t_max"))

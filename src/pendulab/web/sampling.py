@@ -165,7 +165,14 @@ def simulate_arrays(p: Mapping[str, Any], points: int, stop: threading.Event | N
     n = step_count(0.0, p["t_max"], p["step"])
     c = -p["g"] / p["length"]
     h = p["step"]
-    period = float(agm_period(p["length"], p["amplitude"], p["g"]))
+    omega0 = p.get("omega0", 0.0)
+    if omega0:  # a launch: its own period (a turn, when it goes round), pendulab.launched
+        from ..launched import launch
+
+        period = launch(p["length"], p["amplitude"], omega0, p["g"]).period
+        period = period if math.isfinite(period) else p["t_max"]
+    else:
+        period = float(agm_period(p["length"], p["amplitude"], p["g"]))
     per = period / h
     nb = max(1, min(points // 2, n + 1))
     phase_idx, phase_stride, windows = phase_samples(n, per)
@@ -177,7 +184,7 @@ def simulate_arrays(p: Mapping[str, Any], points: int, stop: threading.Event | N
     th_lo, e_lo = np.full(nb, np.inf), np.full(nb, np.inf)
     th_hi, e_hi = np.full(nb, -np.inf), np.full(nb, -np.inf)
     om_lo, om_hi = np.empty(nb), np.empty(nb)
-    z = np.array([p["amplitude"], 0.0])
+    z = np.array([p["amplitude"], omega0])
     # col, first step of the next column (ceil((n+1)/nb)), next sample, left, bad
     where = np.array([0, (n + 1 + nb - 1) // nb, 0, -1, -1], dtype=np.int64)
     chunk = max(1, int(CHUNK_WORK / limits.weight(resolve(p["method"]))))
@@ -185,7 +192,7 @@ def simulate_arrays(p: Mapping[str, Any], points: int, stop: threading.Event | N
         if stop is not None and stop.is_set():
             raise Cancelled
         scan(code, order, p["amplitude"], c, h, n, i0, min(n + 1, i0 + chunk), z, where, samples, s_th, s_om,
-             i_lo, i_hi, th_lo, th_hi, om_lo, om_hi, e_i_lo, e_i_hi, e_lo, e_hi)
+             i_lo, i_hi, th_lo, th_hi, om_lo, om_hi, e_i_lo, e_i_hi, e_lo, e_hi, omega0)
     left, bad = int(where[3]), int(where[4])
     idx, theta = columns(i_lo, th_lo, i_hi, th_hi)
     _, omega = columns(i_lo, om_lo, i_hi, om_hi)

@@ -102,6 +102,24 @@ def estimate_view(length: float, amplitude: float, step: float, g: float, method
     }
 
 
+def exact_state(p: Mapping[str, Any], t: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """``(theta, theta')`` of the exact motion at ``t``: from rest (:func:`pendulab.motion.exact_motion`)
+    or launched with ``omega0`` (:func:`pendulab.launched.launched_motion`)."""
+    if p.get("omega0", 0.0):
+        from ..launched import launched_motion
+
+        return launched_motion(p["length"], p["amplitude"], p["omega0"], t, p["g"])
+    from ..motion import exact_motion
+
+    m = exact_motion(p["length"], p["amplitude"], t, p["g"])
+    return m.theta, m.omega
+
+
+def _energy0(p: Mapping[str, Any]) -> float:
+    """The release's energy above the bottom, ``E0/(m g l) = 1 - cos(alpha) + omega0^2 l/(2g)``."""
+    return 1.0 - math.cos(p["amplitude"]) + p.get("omega0", 0.0) * p.get("omega0", 0.0) * p["length"] / (2 * p["g"])
+
+
 def _drift_kind(sim: Mapping[str, Any], h: float, t_end: float) -> str | None:
     """``"secular"`` when the energy error grows over the run, ``"bounded"`` when it does not.
 
@@ -130,9 +148,10 @@ def _flags(p: Mapping[str, Any], sim: Mapping[str, Any], err_t: np.ndarray | Non
     the exact motion by more than :data:`PHASE_WARN`) or ``"note"`` (a bounded energy
     oscillation: the motion stays a pendulum's). ``warnings``: the texts of the first two kinds.
     """
-    h, alpha = p["step"], p["amplitude"]
-    swing = 1.0 - math.cos(alpha)  # the oscillation's energy, E(alpha) - E(0), in m g l
-    left = sim["left"] * h if sim["left"] >= 0 else None
+    h = p["step"]
+    swing = _energy0(p)  # the swing's energy, E0 - E(0), in m g l
+    goes_round = bool(p.get("omega0", 0.0)) and sim.get("circulates", False)
+    left = sim["left"] * h if sim["left"] >= 0 and not goes_round else None  # over the top, as the exact one does
     bad = sim["bad"] * h if sim["bad"] >= 0 else None
     drift = sim["energy_max"]
     rel = drift / swing if swing > 0 and math.isfinite(drift) else None
@@ -145,15 +164,16 @@ def _flags(p: Mapping[str, Any], sim: Mapping[str, Any], err_t: np.ndarray | Non
     if left is not None:
         notes.append({"kind": "over-the-top", "severity": "wrong", "text": (
             f"the simulated pendulum went over the top (|theta| >= 180 deg) at t = {left:.6g} s, which the real one "
-            f"released at rest below 180 deg never does: step h = {h:g} s is too large for this method")})
+            + ("released at rest below 180 deg" if not p.get("omega0", 0.0) else "launched with too little energy to reach the top")
+            + f" never does: step h = {h:g} s is too large for this method")})
     if rel is not None and rel > ENERGY_WARN and bad is None:
         if kind == "bounded":
             notes.append({"kind": "energy-oscillation", "severity": "note", "text": (
-                f"the energy oscillates by up to {100 * rel:.3g} % of the swing's energy m g l (1 - cos alpha) "
+                f"the energy oscillates by up to {100 * rel:.3g} % of the swing's energy E0 "
                 "and does not grow: a bounded error (as a symplectic method's), the swing stays a pendulum's")})
         else:
             notes.append({"kind": "energy-drift", "severity": "wrong", "text": (
-                f"the energy drifted by up to {100 * rel:.3g} % of the swing's energy m g l (1 - cos alpha)"
+                f"the energy drifted by up to {100 * rel:.3g} % of the swing's energy E0"
                 + (", and keeps growing" if kind == "secular" else "")
                 + ": the simulated motion is not the pendulum's; use a smaller step or another method")})
     phase = None
@@ -189,25 +209,35 @@ def simulate_view(params: Mapping[str, str], stop: threading.Event | None = None
     drift ``(E - E0)/(m g l)`` at every step, min/max per column. ``stop`` set while the
     simulation runs raises :class:`Cancelled`.
     """
-    from ..motion import exact_motion
-
     p = parameters.simulation(params)
     points = parameters.points(params, limits.DEFAULT_PLOT_POINTS, limits.MAX_POINTS)
-    est = estimate_view(p["length"], p["amplitude"], p["step"], p["g"], p["method"])
+    launched = _launch_view(p, params)
+    if launched is None:
+        est = estimate_view(p["length"], p["amplitude"], p["step"], p["g"], p["method"])
+    else:  # the coursework's estimate times a release at rest; a launch has its period from pendulab.launched
+        est = {"estimate": None, "reason": (
+            f"the period is estimated from a release at rest; this pendulum is launched with theta'(0) = {p['omega0']:g} "
+            f"rad/s: its exact {'time for one turn' if launched['circulates'] else 'period'} is shown")}
     sim = sampling.simulate_arrays(p, points, stop)
+    sim["circulates"] = bool(launched and launched["circulates"])
     h, n, nb = p["step"], sim["n"], sim["columns"]
     f_idx, e_idx = sim["frame_idx"], sim["error_idx"]
     f_t, e_t = h * f_idx, h * e_idx
     # A blown-up simulation (inf - inf), or a phase sqrt(g/l) t beyond the doubles: NaN, shown as null.
     with np.errstate(invalid="ignore", over="ignore"):
-        err = sim["error_theta"] - exact_motion(p["length"], p["amplitude"], e_t, p["g"]).theta
+        ex_e = exact_state(p, e_t)[0]
+        err = sim["error_theta"] - ex_e
     keep = sampling.minmax((e_idx * nb) // (n + 1), err, nb)
-    ex_t, ex_th = sampling.exact_overlay(p["length"], p["amplitude"], p["g"], sim["period"], n * h, nb)
+    if launched is None:
+        ex_t, ex_th = sampling.exact_overlay(p["length"], p["amplitude"], p["g"], sim["period"], n * h, nb)
+    else:  # a launch: the exact motion at the error's samples, 64 a period, min/max per column
+        ex_keep = sampling.minmax((e_idx * nb) // (n + 1), ex_e, nb)
+        ex_t, ex_th = e_t[ex_keep], ex_e[ex_keep]
     ph_t = h * sim["phase_idx"]
     with np.errstate(invalid="ignore", over="ignore"):  # sqrt(g/l) t beyond the doubles: null, as above
-        ex_frames = exact_motion(p["length"], p["amplitude"], f_t, p["g"])
-        # One period of the exact orbit, a closed curve in the phase plane.
-        orbit = exact_motion(p["length"], p["amplitude"], np.linspace(0.0, sim["period"], ORBIT_POINTS), p["g"])
+        ex_frames = exact_state(p, f_t)
+        # One period of the exact orbit, a closed curve in the phase plane (a turn, for a launch that goes round).
+        orbit = exact_state(p, np.linspace(0.0, sim["period"], ORBIT_POINTS))
     return {
         "input": {k: p[k] for k in ("length", "amplitude", "step", "t_max", "g", "method")}
         | {"amplitude_deg": math.degrees(p["amplitude"])},
@@ -233,11 +263,29 @@ def simulate_view(params: Mapping[str, str], stop: threading.Event | None = None
             "t": f_t.tolist(), "theta": finite_list(sim["frame_theta"]), "omega": finite_list(sim["frame_omega"]),
             "per_period": sim["period"] / (h * (f_idx[1] - f_idx[0])) if len(f_idx) > 1 else None,
         },
-        "exact_frames": {"theta": finite_list(ex_frames.theta), "omega": finite_list(ex_frames.omega)},
-        "exact_phase": {"theta": finite_list(orbit.theta), "omega": finite_list(orbit.omega)},
+        "exact_frames": {"theta": finite_list(ex_frames[0]), "omega": finite_list(ex_frames[1])},
+        "exact_phase": {"theta": finite_list(orbit[0]), "omega": finite_list(orbit[1])},
+        "launch": launched,
         "flags": _flags(p, sim, e_t, err),
-        "period": period_view(p["length"], p["amplitude"], p["g"]) | est,
+        "period": period_view(p["length"], p["amplitude"], p["g"]) | est
+        | ({"period": launched["period"]} if launched else {}),
     }
+
+
+def _launch_view(p: Mapping[str, Any], params: Mapping[str, str]) -> dict[str, Any] | None:
+    """None for a release at rest; else the launch: ``omega0``, ``k``, whether it goes round,
+    its period (a turn's time when it does) and turning angle (:mod:`pendulab.launched`)."""
+    if not p["omega0"]:
+        return None
+    from ..launched import launch
+
+    info = launch(p["length"], p["amplitude"], p["omega0"], p["g"])
+    if not math.isfinite(info.period):
+        raise InputError("omega0", inputs.shown(parameters.text(params, "omega0")),
+                         "not exactly the speed that reaches the top (the separatrix, which takes forever)")
+    return {"omega0": p["omega0"], "k": info.k, "circulates": info.circulates, "period": info.period,
+            "turning_angle": info.turning_angle,
+            "turning_angle_deg": math.degrees(info.turning_angle) if info.turning_angle is not None else None}
 
 
 def trajectory_csv(params: Mapping[str, str]) -> tuple[Iterator[str], str]:
@@ -266,9 +314,10 @@ def csv_blocks(p: Mapping[str, Any], points: int) -> Iterator[str]:
     stride = int(idx[1] - idx[0]) if len(idx) > 1 else 1
     h, c = p["step"], -p["g"] / p["length"]
     full = p if p.get("columns", "state") == "all" else None
-    first = _csv_rows(p, np.zeros(1), np.array([p["amplitude"]]), np.zeros(1)) if full else f"{0.0!r},{p['amplitude']!r},{0.0!r}\n"
+    w0 = float(p.get("omega0", 0.0))
+    first = _csv_rows(p, np.zeros(1), np.array([p["amplitude"]]), np.array([w0])) if full else f"{0.0!r},{p['amplitude']!r},{w0!r}\n"
     yield CSV_COLUMNS["all" if full else "state"] + "\n" + first
-    state = (p["amplitude"], 0.0)
+    state = (p["amplitude"], w0)
     i = 0
     while i < n:
         i1 = min(n, i + stride * CSV_BLOCK)
@@ -279,13 +328,11 @@ def csv_blocks(p: Mapping[str, Any], points: int) -> Iterator[str]:
 
 def _csv_rows(p: Mapping[str, Any], t: np.ndarray, theta: np.ndarray, omega: np.ndarray) -> str:
     """Rows with the exact motion, the global error and the energy error beside the state."""
-    from ..motion import exact_motion
-
     with np.errstate(invalid="ignore", over="ignore"):
-        ex = exact_motion(p["length"], p["amplitude"], t, p["g"])
-        drift = omega * omega * (p["length"] / (2 * p["g"])) - np.cos(theta) + math.cos(p["amplitude"])
-        err = theta - ex.theta
-    cols = [a.tolist() for a in (t, theta, omega, ex.theta, ex.omega, err, drift)]
+        ex_theta, ex_omega = exact_state(p, t)
+        drift = omega * omega * (p["length"] / (2 * p["g"])) + (1.0 - np.cos(theta)) - _energy0(p)
+        err = theta - ex_theta
+    cols = [a.tolist() for a in (t, theta, omega, ex_theta, ex_omega, err, drift)]
     return "".join(",".join(repr(x) for x in row) + "\n" for row in zip(*cols))
 
 

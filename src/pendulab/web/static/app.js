@@ -5,10 +5,10 @@
 // the animation as a stopwatch would: the times at which the drawn bob crosses the bottom.
 "use strict";
 
-const FIELDS = ["length", "amplitude", "unit", "g", "method", "step", "t_max", "method2", "step2", "length2", "amplitude2", "g2"];
-const NUMBER_FIELDS = ["length", "amplitude", "g", "step", "t_max", "step2", "length2", "amplitude2", "g2"];
+const FIELDS = ["length", "amplitude", "unit", "g", "omega0", "method", "step", "t_max", "method2", "step2", "length2", "amplitude2", "g2"];
+const NUMBER_FIELDS = ["length", "amplitude", "g", "omega0", "step", "t_max", "step2", "length2", "amplitude2", "g2"];
 const ERROR_FIELDS = NUMBER_FIELDS.concat(["method", "method2"]);
-const OPTIONAL = ["method2", "step2", "length2", "amplitude2", "g2"];  // in the URL only when set
+const OPTIONAL = ["omega0", "method2", "step2", "length2", "amplitude2", "g2"];  // in the URL only when set
 const PLOT_POINTS = 3000;          // theta(t): min and max of 1500 columns (more than a plot's pixels)
 const MAX_PERIOD_MARKS = 12;       // dashed kT lines on theta(t), beyond which none are drawn
 const SPEEDS = [0.1, 0.25, 0.5, 1, 2, 4];
@@ -102,9 +102,11 @@ function apiAmplitude() {
 function apiQuery(which, extra = {}) {
   const method = which === "b" ? state.method2 : state.method;
   const step = which === "b" && state.step2 ? state.step2 : state.step;
-  return new URLSearchParams({
+  const q = new URLSearchParams({
     length: state.length, amplitude: state.amplitude, unit: state.unit, g: state.g, method, step, t_max: state.t_max, ...extra,
-  }).toString();
+  });
+  if (state.omega0) q.set("omega0", state.omega0);
+  return q.toString();
 }
 
 function secondQuery() {
@@ -196,6 +198,10 @@ async function update() {
 const nextFrame = () => new Promise((resolve) => requestAnimationFrame(() => resolve()));
 
 async function updateConvergence(my) {
+  if (sims.a.launch) {  // the estimates time a release at rest
+    renderConvergence(null, { message: "period estimates need a release at rest (θ′₀ = 0)" });
+    return;
+  }
   const T = sims.a.period.period;
   // Steps from T/30 down to T/30000, four per decade, plus the steps in use.
   const steps = [];
@@ -323,6 +329,9 @@ function tableFor(s, suffix) {
 
 function renderPeriods() {
   const p = sims.a.period;
+  const L = sims.a.launch;
+  $("period-label").textContent = !L ? "Exact (AGM, eq. 8)"
+    : L.circulates ? "Exact, one turn over the top (DLMF 22.19)" : `Exact, launched (turning angle ${short(L.turning_angle_deg)}°)`;
   $("period-exact").textContent = fix(p.period);
   $("period-small").textContent = fix(p.small_angle);
   $("period2-line").hidden = !sims.second;
@@ -599,8 +608,10 @@ async function renderRatio() {
     line: { color: colors[i % colors.length], width: 1.6, dash: dashes[i % dashes.length] }, hovertemplate: `${a.label}<br>α = %{x}°<br>T/T0 = %{y:.5f}<extra></extra>` }));
   const mark = (p, color, name) => ({ x: [p.amplitude_deg], y: [p.period / p.small_angle], mode: "markers", name,
     marker: { color, size: 12, line: { color: "#fff", width: 1.5 } }, hovertemplate: `${name}<br>α = %{x:.4g}°<br>T/T0 = %{y:.6f}<extra></extra>` });
-  const p = sims.a.period;
-  traces.push(mark(p, COLORS.p, "this pendulum"));
+  const p = sims.a.period, L = sims.a.launch;
+  // A launched pendulum sits on the curve at its turning angle; one that goes round is not on it.
+  if (!L) traces.push(mark(p, COLORS.p, "this pendulum"));
+  else if (!L.circulates) traces.push(mark({ amplitude_deg: L.turning_angle_deg, period: p.period, small_angle: p.small_angle }, COLORS.p, "this pendulum"));
   if (sims.second) traces.push(mark(sims.second, COLORS.second, "second pendulum"));
   // The legend inside, top left: below 90° every curve is near 1, the corner is empty.
   plot("plot-ratio", traces, layout("Period against amplitude: T(α)/T₀", "α (deg)", "T / T₀", {
@@ -689,12 +700,17 @@ function photogate(t, theta) {
   gate.prev = theta === null ? null : { t, theta };
   if (!prev || theta === null) return;
   if (t <= prev.t || t - prev.t > 0.25) { gate.passes = []; return; }  // a jump or a wrap: start again
-  if ((prev.theta < 0) === (theta < 0) || prev.theta === theta) return;
-  // The beam is cut where the bob crosses theta = 0: linear between the two drawn frames.
-  const tc = prev.t + (t - prev.t) * prev.theta / (prev.theta - theta);
-  gate.passes.push(tc);
-  if (gate.passes.length > 3) gate.passes.shift();
-  if (gate.passes.length === 3) gate.period = gate.passes[2] - gate.passes[0];  // every second pass: one period
+  // The beam is at the bottom, theta = 0 modulo a turn: the multiple of 2 pi between the two frames.
+  const turn = 2 * Math.PI, b = turn * Math.round((prev.theta + theta) / 2 / turn);
+  const p0 = prev.theta - b, p1 = theta - b;
+  if ((p0 < 0) === (p1 < 0) || p0 === p1 || Math.abs(p0) > 1.5 || Math.abs(p1) > 1.5) return;
+  const tc = prev.t + (t - prev.t) * p0 / (p0 - p1);  // linear between the two drawn frames
+  const dir = p1 > p0 ? 1 : -1;
+  // One period between two passes the same way (every second pass of a swing, each pass of a turn).
+  const same = gate.passes.filter((x) => x.dir === dir);
+  if (same.length) gate.period = tc - same[same.length - 1].tc;
+  gate.passes.push({ tc, dir });
+  if (gate.passes.length > 4) gate.passes.shift();
   gate.flash = performance.now();
   showGate();
 }
@@ -702,7 +718,7 @@ function photogate(t, theta) {
 function showGate() {
   const T = sims.a ? sims.a.period.period : null;
   $("gate").textContent = gate.period === null
-    ? `Photogate: ${gate.passes.length} pass${gate.passes.length === 1 ? "" : "es"}, a period needs 3`
+    ? `Photogate: ${gate.passes.length} pass${gate.passes.length === 1 ? "" : "es"}, waiting for a period`
     : `Photogate: period ${gate.period.toFixed(3)} s · exact ${T.toFixed(3)} s`;
   $("gate").dataset.period = gate.period === null ? "" : String(gate.period);
 }
@@ -747,7 +763,8 @@ function renderBars() {
       }
     }
   }
-  const top = 2.2;  // the bars' full width: above the largest energy of a swing, 2 m g l
+  // The bars' full width: above the largest energy of a swing (2 m g l), or of this launch.
+  const top = Math.max(2.2, 1.1 * (ex ? ex.E : 0));
   for (const [who, e] of rows) {
     for (const k of ["K", "U", "E"]) {
       const x = e ? e[k] : null;
@@ -804,10 +821,12 @@ function draw() {
   }
   if (!s) return null;
   const side = view.side;
-  const a = anim.drag !== null ? Math.abs(anim.drag) : s.input.amplitude;
+  // The turning angles: ±α from rest, ±(2 asin k) for a launch that swings, none for one that goes round.
+  const L = s.launch;
+  const a = anim.drag !== null ? Math.abs(anim.drag) : L ? L.turning_angle : s.input.amplitude;
   const pv = pivots[0], R = radii[0];
   g.strokeStyle = "rgba(209, 73, 91, .35)"; g.lineWidth = 1;
-  for (const sg of [-1, 1]) { g.beginPath(); g.moveTo(pv.x, pv.y); g.lineTo(pv.x + R * Math.sin(sg * a), pv.y + R * Math.cos(sg * a)); g.stroke(); }
+  if (a !== null) for (const sg of [-1, 1]) { g.beginPath(); g.moveTo(pv.x, pv.y); g.lineTo(pv.x + R * Math.sin(sg * a), pv.y + R * Math.cos(sg * a)); g.stroke(); }
   // The photogate: a beam across the bottom of the first pendulum's circle.
   const lit = gate.flash && performance.now() - gate.flash < 120;
   g.strokeStyle = lit ? "#d1495b" : "rgba(209, 73, 91, .55)"; g.lineWidth = lit ? 3 : 1.5; g.setLineDash([3, 3]);
