@@ -5,6 +5,7 @@ import math
 from typing import Any
 
 from .errors import InputError
+from .methods import cost_per_step, resolve
 
 
 def finite(name: str, value: Any) -> float:
@@ -135,6 +136,24 @@ def step_limit(name: str, step: float, t0: float, t_max: float, limit: int, what
         alternative=InputError("t_max", t_max, f"<= {t0 + limit * step:.4g} s ({at_most} with {name} = {step:g} s; "
                                                f"or a larger {name})", mentions=(name,)),
     )
+
+
+def steps_for(method: Any, budget: float) -> int:
+    """The most steps of ``method`` whose cost is ``budget`` steps of (3) (taylor2): every work
+    limit is stated in steps of (3) and weighed by :func:`pendulab.methods.cost_per_step`."""
+    return max(1, int(budget / cost_per_step(method)))
+
+
+def work_within(name: str, value: Any, steps: float, method: Any, budget: float) -> float:
+    """``steps`` steps of ``method`` (all the runs of one command or request together), refused
+    naming ``name`` and ``value`` where they cost more than ``budget`` steps of (3)."""
+    m = resolve(method)
+    if not steps * cost_per_step(m) <= budget:  # also catches inf and NaN
+        allowed = steps_for(m, budget)
+        of = "" if m.name == "taylor2" else f" of {m.name} ({cost_per_step(m):.3g}x the cost of a step of taylor2)"
+        raise InputError(name, value, f"steps that need at most {allowed:.3g} steps{of} in all "
+                                      f"(these need {steps:.3g}); use larger or fewer steps")
+    return steps
 
 
 def sqrt_ratio(length: float, g: float) -> float:

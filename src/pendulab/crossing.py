@@ -144,8 +144,8 @@ def estimate_period(
         t_max = default_t_max(exact, step, t0)
     t0, t_max, step = v.time_span(t0, t_max, step)
     m = resolve(method)
-    n = v.steps_within("step", t0, t_max, step, MAX_STEPS)
-    from ._kernels import first_return
+    n = v.steps_within("step", t0, t_max, step, v.steps_for(m, MAX_STEPS), _of(m))
+    from ._kernels import first_return_pieces
 
     c = -g / length
     if alpha * abs(c) * step < sys.float_info.min:
@@ -157,7 +157,7 @@ def estimate_period(
             f"{sys.float_info.min:.3g}, so its sign changes are lost to underflow; use an amplitude >= "
             f"{sys.float_info.min / (abs(c) * step):.3g} rad at this step (no t_max helps)"
         )
-    status, j, z1w, z2w = first_return(int(m.code), m.order, alpha, c, step, n)
+    status, j, z1w, z2w = first_return_pieces(int(m.code), m.order, alpha, c, step, n)
     if status == Status.NO_RETURN:
         suggest = default_t_max(exact, step, t0)
         if suggest <= t_max:
@@ -199,6 +199,11 @@ def estimate_period(
         window_omega=z2w.copy(),
         dense=float(dense),
     )
+
+
+def _of(m) -> str:
+    """``steps``, named with the method where its limit is weighed by its cost."""
+    return "steps" if m.name == "taylor2" else f"steps of {m.name}"
 
 
 def observed_orders(steps: list[float], errors: list[float]) -> list[float | None]:

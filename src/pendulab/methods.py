@@ -85,6 +85,28 @@ def resolve(name: object, argument: str = "method") -> Method:
     raise InputError(argument, shown(name) if isinstance(name, str) else repr(name), allowed())
 
 
+#: The cost of one step of each named method, relative to one step of (3) (taylor2):
+#: measured by ``benchmarks/method_cost.py`` (the period search's kernel, CPU time,
+#: rk4 2.16-2.23x and verlet 1.06-1.07x in two runs), rounded.
+STEP_COST: dict[Kernel, float] = {Kernel.TAYLOR2: 1.0, Kernel.RK4: 2.2, Kernel.VERLET: 1.1}
+#: ``taylor:P`` costs ``a + b P + c P^2`` steps of (3): the fit of the same measurements
+#: (its recurrences take ``O(P^2)`` operations; the fit is within 5% of each of P = 1..30,
+#: 3.3x at P = 1, 40x at P = 30).
+TAYLOR_COST = (2.9, 0.40, 0.028)
+
+
+def cost_per_step(method: object) -> float:
+    """What one step of ``method`` costs, in steps of (3) (taylor2): the weight of every work limit.
+
+    A limit of ``N`` steps of (3) allows ``N / cost_per_step(method)`` steps of ``method``.
+    """
+    m = resolve(method)
+    if m.code == Kernel.TAYLOR:
+        a, b, c = TAYLOR_COST
+        return max(1.0, a + b * m.order + c * m.order * m.order)
+    return STEP_COST[m.code]
+
+
 def menu() -> list[Method]:
     """The methods a menu offers (the CLI's help, the web page's list): the named ones now."""
     return list(METHODS.values())

@@ -36,7 +36,8 @@ METHODS: Mapping[str, tuple[int, int]] = _Codes()
 TAYLOR_CODE, MAX_TAYLOR_ORDER = int(_methods.Kernel.TAYLOR), _methods.MAX_TAYLOR_ORDER
 #: The largest trajectory kept in memory (points); longer runs stream (crossing.py).
 MAX_POINTS = 10_000_001
-#: The most steps one simulation may take (about a minute on one core).
+#: The most steps of (3) one simulation may take (seconds on one core); other methods'
+#: steps count by their cost (:func:`pendulab.methods.cost_per_step`).
 MAX_STEPS = 2_000_000_000
 
 
@@ -135,7 +136,8 @@ def simulate(
     code, order = method_code(method)
     stride = v.integer("stride", stride, 1)
     # Work and memory by arithmetic, before anything is allocated.
-    n = v.steps_within("step", t0, t_max, step, MAX_STEPS)
+    limit = v.steps_for(method, MAX_STEPS)  # weighed by the method's cost
+    n = v.steps_within("step", t0, t_max, step, limit, "steps" if limit == MAX_STEPS else f"steps of {method}")
     kept = n // stride + 1 + (n % stride != 0)
     if kept > MAX_POINTS:
         raise v.step_limit("step", step, t0, t_max, MAX_POINTS - 1, "points kept (or a stride)")

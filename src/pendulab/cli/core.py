@@ -165,10 +165,18 @@ def _plots():
 @json_option
 def estimate(length, amplitude, steps, t_max, method, dense, g, as_json):
     """The period from simulations (problem 3(c)-(d)): bracket, linear and cubic estimates."""
-    from ..crossing import estimate_period, observed_orders
+    from .. import _validate as v
+    from ..crossing import default_t_max, estimate_period, observed_orders
     from ..group import group_length
+    from ..period import agm_period
+    from ..taylor import MAX_STEPS
 
     length = float(length) if length is not None else group_length(EXAMPLE_GROUP).length
+    # The whole list's work, weighed by the method's cost, before the first run: at most
+    # what one run may take (MAX_STEPS steps of (3)).
+    period = agm_period(length, float(amplitude), float(g))
+    work = sum((default_t_max(period, h) if t_max is None else float(t_max)) / h for h in steps)
+    v.work_within("steps", ",".join(f"{h:g}" for h in steps), work, method, MAX_STEPS)
     rows = [estimate_period(length, float(amplitude), h, t_max, 0.0, float(g), method) for h in steps]
     period = rows[0].period  # the AGM period (8), computed once by estimate_period
     lin_err = [r.linear_error for r in rows]

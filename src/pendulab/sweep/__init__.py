@@ -53,21 +53,28 @@ def _check_steps(steps: Any) -> list[float]:
     return [v.positive("step", h) for h in steps]
 
 
-#: The most steps of all pendulums together (minutes of work on a few cores).
+#: The most steps of (3) of all pendulums together (minutes of work on a few cores); other
+#: methods' steps count by their cost (:func:`pendulab.methods.cost_per_step`).
 MAX_TOTAL_STEPS = 10**11
 #: The most rows (pendulum, step, method) of one sweep: about 400 MB of results.
 MAX_ROWS = 10**6
 
 
-def _check_work(alpha: np.ndarray, length: np.ndarray, g: float, steps: list[float], methods: int) -> None:
+def _check_work(alpha: np.ndarray, length: np.ndarray, g: float, steps: list[float], names: list[str]) -> None:
     """Refuse by arithmetic, before any allocation, a step no pendulum search can take or a sweep too long.
 
     Each pendulum runs to ``1.5 T + 4h`` (:func:`pendulab.crossing.default_t_max`): at most
-    :data:`pendulab.taylor.MAX_STEPS` steps each, :data:`MAX_TOTAL_STEPS` in all.
+    :data:`pendulab.taylor.MAX_STEPS` steps of (3) each, :data:`MAX_TOTAL_STEPS` in all, a
+    method's steps weighed by its cost (:func:`pendulab.methods.cost_per_step`).
     """
     from ..crossing import default_t_max
+    from ..methods import cost_per_step
     from ..taylor import MAX_STEPS
 
+    methods = len(names)
+    cost = sum(cost_per_step(m) for m in names)  # of one step of every method
+    worst = max(names, key=cost_per_step)
+    most = v.steps_for(worst, MAX_STEPS)
     rows = len(alpha) * len(steps) * methods
     if rows > MAX_ROWS:  # each row holds about 400 bytes of result columns
         raise InputError("amplitude", f"{len(alpha)} amplitudes",
@@ -78,13 +85,15 @@ def _check_work(alpha: np.ndarray, length: np.ndarray, g: float, steps: list[flo
     total = 0.0
     for h in steps:
         n = default_t_max(longest, h) / h
-        if not n <= MAX_STEPS:
-            raise InputError("step", h, f">= {default_t_max(longest, h) / MAX_STEPS:.3g} s: the longest period "
-                             f"({longest:.4g} s) needs 1.5 T / h steps, at most {MAX_STEPS:.0e}")
-        total += methods * (1.5 * total_time + 4 * h * len(periods)) / h
+        if not n <= most:
+            of = "" if most == MAX_STEPS else f" of {worst}"
+            raise InputError("step", h, f">= {default_t_max(longest, h) / most:.3g} s: the longest period "
+                             f"({longest:.4g} s) needs 1.5 T / h steps, at most {most:.0e}{of}")
+        total += cost * (1.5 * total_time + 4 * h * len(periods)) / h
     if not total <= MAX_TOTAL_STEPS:
-        raise InputError("step", min(steps), f"such that the sweep runs at most {MAX_TOTAL_STEPS:.0e} steps in all "
-                         f"(these need {total:.3g}); use larger steps, or fewer amplitudes or methods")
+        raise InputError("step", min(steps), f"such that the sweep runs at most {MAX_TOTAL_STEPS:.0e} steps of "
+                         f"taylor2 in all, other methods' steps weighed by their cost (these need {total:.3g}); "
+                         "use larger steps, or fewer amplitudes or methods")
 
 
 def sweep(
@@ -146,7 +155,7 @@ def sweep(
     hs = _check_steps(steps)
     ms = _check_methods(methods)
     chunk = v.integer("chunk", chunk, 1)
-    _check_work(alpha, length, g, hs, len(ms))
+    _check_work(alpha, length, g, hs, [name for name, _, _ in ms])
     bounds = [(i, min(i + chunk, len(alpha))) for i in range(0, len(alpha), chunk)]
     jobs = [(name, code, order, h, lo, hi) for name, code, order in ms for h in hs for lo, hi in bounds]
 
