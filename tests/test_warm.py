@@ -4,7 +4,7 @@ from pendulab._warm import warm_kernels
 from pendulab.crossing import estimate_period
 from pendulab.taylor import simulate
 
-KERNELS = ("fill_trajectory", "fill_thinned", "first_return")
+KERNELS = ("drive", "search_return")
 
 
 def test_warm_up_covers_the_library_calls():

@@ -15,7 +15,8 @@ from numba.extending import intrinsic
 
 from ._agm import COS_HI, N_TABLE, PI_HI, SIN_HI
 from ._libm import cos, sin
-from .methods import MAX_TAYLOR_ORDER, Kernel, Status
+from ._interrupt import CHUNK_COST, pieces, run_pieces
+from .methods import MAX_TAYLOR_ORDER, Kernel, Status, cost_per_step
 
 #: Method codes understood by :func:`step` (the registry's, as plain ints for numba).
 TAYLOR2, RK4, VERLET, TAYLOR = (int(k) for k in (Kernel.TAYLOR2, Kernel.RK4, Kernel.VERLET, Kernel.TAYLOR))
@@ -325,54 +326,73 @@ def fast_pays(method, c, h, n) -> bool:
 
 
 @njit(cache=True, nogil=True)
-def fill_trajectory_fast(alpha, c, h, z1, z2):
-    """:func:`fill_trajectory` for (3) through :func:`taylor2_fast_step`: the same points."""
-    a, b = alpha, 0.0
-    z1[0] = a
-    z2[0] = b
-    for i in range(1, len(z1)):
-        a, b = taylor2_fast_step(a, b, h, c)
-        z1[i] = a
-        z2[i] = b
-
-
-@njit(cache=True, nogil=True)
-def fill_thinned_fast(alpha, c, h, n, stride, z1, z2):
-    """:func:`fill_thinned` for (3) through :func:`taylor2_fast_step`: the same points."""
-    a, b = alpha, 0.0
-    z1[0] = a
-    z2[0] = b
-    k = 1
-    keep = stride
-    for i in range(1, n + 1):
+def drive_fast(a, b, c, h, i0, i1, stride, n, z1, z2):
+    """:func:`drive` for (3) through :func:`taylor2_fast_step`: the same states, the same contract."""
+    k = 0
+    keep = (i0 // stride + 1) * stride
+    for i in range(i0 + 1, i1 + 1):
         a, b = taylor2_fast_step(a, b, h, c)
         if i == keep or i == n:  # noqa: SIM109 (two compares in the compiled loop, no tuple)
             z1[k] = a
             z2[k] = b
             k += 1
             keep += stride
+    return a, b, k
 
 
-def trajectory(method, order, alpha, c, h, n):
-    """The points ``Z_j``, ``j = 0..n``, as two new arrays."""
-    z1 = np.empty(n + 1)
-    z2 = np.empty(n + 1)
-    if fast_pays(method, c, h, n):  # (3), fine and long: the same points, faster (taylor2_fast_step)
-        fill_trajectory_fast(alpha, c, h, z1, z2)
-    else:
-        fill_trajectory(method, order, alpha, c, h, z1, z2)
-    return z1, z2
+@njit(cache=True, nogil=True)
+def fill_trajectory_fast(alpha, c, h, z1, z2):
+    """:func:`fill_trajectory` for (3) through :func:`taylor2_fast_step`: the same points."""
+    n = len(z1) - 1
+    z1[0] = alpha
+    z2[0] = 0.0
+    drive_fast(alpha, 0.0, c, h, 0, n, 1, n, z1[1:], z2[1:])
+
+
+@njit(cache=True, nogil=True)
+def fill_thinned_fast(alpha, c, h, n, stride, z1, z2):
+    """:func:`fill_thinned` for (3) through :func:`taylor2_fast_step`: the same points."""
+    z1[0] = alpha
+    z2[0] = 0.0
+    drive_fast(alpha, 0.0, c, h, 0, n, stride, n, z1[1:], z2[1:])
+
+
+def _piece(method, order) -> int:
+    """Steps per piece of a run cut into pieces (:func:`pendulab._interrupt.run_pieces`): the
+    same cost for every method, so that Ctrl+C waits one piece at most (tens of ms)."""
+    name = f"taylor:{order}" if method == TAYLOR else Kernel(method).name.lower()
+    return max(1, int(CHUNK_COST / cost_per_step(name)))
 
 
 def thinned(method, order, alpha, c, h, n, stride, size):
-    """The points kept by :func:`fill_thinned` (``size`` of them), as two new arrays."""
+    """The points ``Z_j`` for ``j = 0, stride, 2 stride, ...`` and ``j = n`` (``size`` of them),
+    as two new arrays.
+
+    :func:`drive` (or :func:`drive_fast`) in pieces, each from the state the one before
+    ended in: the same points, bit for bit, and a signal stops the run between two pieces.
+    """
     z1 = np.empty(size)
     z2 = np.empty(size)
-    if fast_pays(method, c, h, n):
-        fill_thinned_fast(alpha, c, h, n, stride, z1, z2)
-    else:
-        fill_thinned(method, order, alpha, c, h, n, stride, z1, z2)
+    z1[0], z2[0] = alpha, 0.0
+    fast = fast_pays(method, c, h, n)  # (3), fine and long: the same points, faster (taylor2_fast_step)
+    state = [alpha, 0.0, 1]  # the state (a, b) of the last step run, the next point to keep
+
+    def run(lo, hi):
+        a, b, k = state
+        if fast:
+            a, b, kept = drive_fast(a, b, c, h, lo, hi, stride, n, z1[k:], z2[k:])
+        else:
+            a, b, kept = drive(method, order, a, b, c, h, lo, hi, stride, n, z1[k:], z2[k:])
+        state[:] = a, b, k + kept
+        return False
+
+    run_pieces(pieces(n, _piece(method, order)), run)
     return z1, z2
+
+
+def trajectory(method, order, alpha, c, h, n):
+    """The points ``Z_j``, ``j = 0..n``, as two new arrays (:func:`thinned`, every step kept)."""
+    return thinned(method, order, alpha, c, h, n, 1, n + 1)
 
 
 #: Status codes of :func:`first_return` (:class:`pendulab.methods.Status`, as plain ints).
@@ -387,20 +407,42 @@ def first_return(method, order, alpha, c, h, n):
 
     Looks for the first ``j`` with ``z2_j > 0 >= z2_{j+1}`` and ``z1_{j+1} > 0``: the
     sign change of ``theta'`` from + to - at the top of the swing. Returns
-    ``(status, j, z1w, z2w)`` where the window holds ``Z_{j-2} .. Z_{j+2}`` when found.
-    The two points before ``Z_i`` are kept in scalars (registers), not in an array.
-    One call of ``step`` and one exit (the loop runs one step past ``j`` for
-    ``Z_{j+2}``): ``step`` is inlined once, which shortens the compilation.
+    ``(status, j, z1w, z2w)`` where the window holds ``Z_{j-2} .. Z_{j+2}`` when found
+    (zeros otherwise). The search itself is :func:`search_return`, all ``n`` steps at once.
     """
-    a2 = b2 = a1 = b1 = 0.0  # Z_{i-2}, Z_{i-1}
-    z1, z2 = alpha, 0.0  # Z_i
     z1w = np.empty(5)  # np.empty, not np.zeros: the one allocator taylor_step compiles already
     z2w = np.empty(5)
     for k in range(5):
         z1w[k] = 0.0
         z2w[k] = 0.0
+    z1w[2] = alpha
+    status, j = search_return(method, order, c, h, n, 0, n, z1w, z2w)
+    if status != FOUND:
+        for k in range(5):
+            z1w[k] = 0.0
+            z2w[k] = 0.0
+    return status, j, z1w, z2w
+
+
+@njit(cache=True, nogil=True)
+def search_return(method, order, c, h, n, lo, hi, z1w, z2w):
+    """Steps ``lo .. hi - 1`` (of ``n``) of :func:`first_return`'s search; returns ``(status, j)``.
+
+    On entry ``z1w[0:3], z2w[0:3]`` hold ``Z_{lo-2}, Z_{lo-1}, Z_lo`` (zeros before ``Z_0 =
+    (alpha, 0)``). Where the search goes on (``NO_RETURN`` with ``hi < n``) they hold
+    ``Z_{hi-2} .. Z_hi`` on return, so that the next piece resumes it: the same steps, bit
+    for bit, as one call with ``lo = 0, hi = n``. Where found, the window holds
+    ``Z_{j-2} .. Z_{j+2}`` (the step after ``hi`` is taken for ``Z_{j+2}``).
+    The two points before ``Z_i`` are kept in scalars (registers), not in an array.
+    One call of ``step`` and one exit (the loop runs one step past ``j`` for
+    ``Z_{j+2}``): ``step`` is inlined once, which shortens the compilation.
+    """
+    a2, a1, z1 = z1w[0], z1w[1], z1w[2]  # Z_{i-2}, Z_{i-1}, Z_i
+    b2, b1, z2 = z2w[0], z2w[1], z2w[2]
     status, j = NO_RETURN, n
-    for i in range(n):
+    for i in range(lo, n):
+        if i == hi and status == NO_RETURN:  # the end of this piece
+            break
         z1n, z2n = step(method, order, z1, z2, h, c)
         if status == FOUND:  # i = j + 1: Z_{j+2}
             z1w[4] = z1n
@@ -421,6 +463,29 @@ def first_return(method, order, alpha, c, h, n):
         a2, b2 = a1, b1
         a1, b1 = z1, z2
         z1, z2 = z1n, z2n
+    if status == NO_RETURN:
+        z1w[0], z1w[1], z1w[2] = a2, a1, z1
+        z2w[0], z2w[1], z2w[2] = b2, b1, z2
+    return status, j
+
+
+def first_return_pieces(method, order, alpha, c, h, n):
+    """:func:`first_return`, run in pieces of :func:`search_return` (the same result, bit for
+    bit): a signal stops it between two pieces (:func:`pendulab._interrupt.run_pieces`)."""
+    z1w = np.zeros(5)
+    z2w = np.zeros(5)
+    z1w[2] = alpha
+    out = [NO_RETURN, n]
+
+    def run(lo, hi):
+        out[:] = search_return(method, order, c, h, n, lo, hi, z1w, z2w)
+        return out[0] != NO_RETURN  # found, or stopped for good
+
+    run_pieces(pieces(n, _piece(method, order)), run)
+    status, j = out
+    if status != FOUND:
+        z1w[:] = 0.0
+        z2w[:] = 0.0
     return status, j, z1w, z2w
 
 

@@ -15,32 +15,27 @@ import threading
 _STARTED: list[threading.Thread] = []
 
 
-def _compile(thinned: bool) -> None:
+def _compile() -> None:
     try:
         import numpy as np
 
-        from ._kernels import fill_thinned, fill_trajectory, first_return
+        from ._kernels import drive, search_return
 
         code, order, alpha, c, h = 0, 2, 1.0, -9.80665, 0.1
-        z = np.empty(3)
-        fill_trajectory(code, order, alpha, c, h, z, z.copy())
-        first_return(code, order, alpha, c, h, 100)
-        if thinned:
-            fill_thinned(code, order, alpha, c, h, 2, 1, z, z.copy())
+        z = np.zeros(5)
+        drive(code, order, alpha, 0.0, c, h, 0, 2, 1, 2, z[1:], z[1:].copy())  # a piece of a trajectory
+        search_return(code, order, c, h, 100, 0, 100, z, z.copy())
     except Exception:  # the command's own first call reports any failure
         pass
 
 
-def warm_kernels(thinned: bool = True) -> threading.Thread:
-    """Start compiling (or loading) the Taylor kernels on a daemon thread, once per process.
-
-    ``thinned=False`` leaves out :func:`~pendulab._kernels.fill_thinned` (only long
-    simulations call it): numba compiles one kernel at a time, so a kernel compiled that
-    the command never calls delays the ones it is waiting for. The kernels are compiled in
-    the order a command first calls them.
+def warm_kernels() -> threading.Thread:
+    """Start compiling (or loading) the Taylor kernels on a daemon thread, once per process:
+    :func:`~pendulab._kernels.drive` (every simulation, in pieces) and
+    :func:`~pendulab._kernels.search_return` (every period search), in that order.
     """
     if not _STARTED:
-        thread = threading.Thread(target=_compile, args=(thinned,), name="pendulab-warm", daemon=True)
+        thread = threading.Thread(target=_compile, name="pendulab-warm", daemon=True)
         thread.start()
         _STARTED.append(thread)
     return _STARTED[0]

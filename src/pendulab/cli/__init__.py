@@ -5,12 +5,19 @@ Subcommands live in small modules loaded on demand, so ``pendulab --help`` and
 """
 from __future__ import annotations
 
+import contextlib
+import errno
 import importlib
+import os
 import re
+import signal
 import sys
+import threading
+from typing import Any
 
 import click
 
+from .._interrupt import Terminated, terminate_handler
 from .._version import __version__
 from ..errors import InputError, MissingExtraError, PendulabError
 from ._common import TYPED, one_line, option_name
@@ -51,6 +58,8 @@ class LazyGroup(click.Group):
             if cmd is None:
                 raise
             raise CliError(in_cli_words(exc, cmd, ctx.meta.get(TYPED, {}))) from exc
+        except KeyboardInterrupt as exc:  # before click turns it into Abort (and prints a blank line)
+            raise Stopped(signal.SIGTERM if isinstance(exc, Terminated) else signal.SIGINT) from None
 
     @staticmethod
     def _load(name: str) -> click.Command | None:
@@ -78,21 +87,103 @@ def cli() -> None:
     """
 
 
+class Stopped(Exception):
+    """A signal (Ctrl+C's SIGINT, or SIGTERM) ended the command; raised after the cleanup ran."""
+
+    def __init__(self, signum: int):
+        super().__init__(signum)
+        self.signum = int(signum)
+
+
+class StdoutError(Exception):
+    """Standard output cannot be written (a full disk, a closed pipe). Not an ``OSError``:
+    no handler of file errors on the way catches it for one of its own."""
+
+    def __init__(self, exc: OSError):
+        super().__init__(exc.strerror or str(exc))
+        self.errno = exc.errno
+
+
+class _GuardedStdout:
+    """``sys.stdout`` while a command runs: its write errors become :class:`StdoutError`."""
+
+    def __init__(self, stream: Any):
+        self._stream = stream
+
+    def write(self, text: str) -> int:
+        try:
+            return self._stream.write(text)
+        except OSError as exc:
+            raise StdoutError(exc) from None
+
+    def flush(self) -> None:
+        try:
+            self._stream.flush()
+        except OSError as exc:
+            raise StdoutError(exc) from None
+
+    def __getattr__(self, name: str) -> Any:
+        return getattr(self._stream, name)
+
+
+def _silence_stdout() -> None:
+    """Point standard output at the null device: what is still buffered goes nowhere, and
+    Python's final flush at exit does not fail a second time with a traceback."""
+    try:
+        null = os.open(os.devnull, os.O_WRONLY)
+        os.dup2(null, sys.stdout.fileno())
+        os.close(null)
+    except (OSError, ValueError, AttributeError):  # no file descriptor (a test's capture)
+        pass
+
+
+def _stopped(where: str, signum: int) -> int:
+    """One line for a command a signal stopped; the exit status 128 + the signal's number."""
+    word = "terminated" if signum == signal.SIGTERM else "interrupted"
+    with contextlib.suppress(OSError):
+        click.echo(f"{where}: {word}", err=True)
+    return 128 + signum
+
+
 def main(argv: list[str] | None = None) -> int:
-    """Entry point: bad input becomes one line on stderr and exit status 2."""
+    """Entry point: bad input becomes one line on stderr and exit status 2.
+
+    Ctrl+C ends a command with one line and 130, SIGTERM with one line and 143, both after
+    the command's cleanup (its temporary files and folders) ran.
+    """
     args = sys.argv[1:] if argv is None else list(argv)
     sub = next((a for a in args if not a.startswith("-")), None)
     where = f"pendulab {sub}" if sub in COMMANDS else "pendulab"
+    main_thread = threading.current_thread() is threading.main_thread()
+    old_term = signal.signal(signal.SIGTERM, terminate_handler) if main_thread else None
+    stdout = sys.stdout
+    sys.stdout = _GuardedStdout(stdout)
     try:
+        return _run(args, where)
+    finally:
+        sys.stdout = stdout
+        if main_thread:
+            signal.signal(signal.SIGTERM, old_term)
+
+
+def _run(args: list[str], where: str) -> int:
+    """:func:`main`'s work: the command, and each way it can end in one line."""
+    try:
+        from ..inputs import source_date_epoch
+
+        # Read by matplotlib and Typst deep inside a run: checked first, as any input.
+        source_date_epoch(os.environ.get("SOURCE_DATE_EPOCH"))
         cli.main(args=args, prog_name="pendulab", standalone_mode=False)
+        sys.stdout.flush()  # a full disk or a closed pipe found here, not at exit
     except click.exceptions.NoArgsIsHelpError as exc:  # `pendulab` alone: the help, as click prints it
         click.echo(exc.ctx.get_help())
         return 2
     except click.exceptions.Exit as exc:
         return exc.exit_code
-    except click.exceptions.Abort:
-        click.echo(f"{where}: aborted", err=True)
-        return 130
+    except Stopped as exc:
+        return _stopped(where, exc.signum)
+    except click.exceptions.Abort as exc:  # Ctrl+C while click parsed or prompted
+        return _stopped(where, signal.SIGTERM if isinstance(exc.__cause__, Terminated) else signal.SIGINT)
     except click.BadParameter as exc:
         # Our parameter types already name the option, the value and the range.
         opts = tuple(exc.param.opts) if exc.param is not None else ()
@@ -108,10 +199,19 @@ def main(argv: list[str] | None = None) -> int:
     except MissingExtraError as exc:
         click.echo(f"{where}: error: {exc}", err=True)
         return 2
-    except KeyboardInterrupt:
-        click.echo(f"{where}: interrupted", err=True)
-        return 130
+    except KeyboardInterrupt as exc:
+        return _stopped(where, signal.SIGTERM if isinstance(exc, Terminated) else signal.SIGINT)
+    except StdoutError as exc:
+        _silence_stdout()
+        return _stdout_error(where, exc.errno, str(exc))
     return 0
+
+
+def _stdout_error(where: str, code: int | None, reason: str) -> int:
+    """One line for standard output that cannot be written: exit 1 (141, SIGPIPE's, for a closed pipe)."""
+    with contextlib.suppress(OSError):
+        click.echo(f"{where}: error: cannot write to standard output: {reason}", err=True)
+    return 141 if code == errno.EPIPE else 1
 
 
 class CliError(click.ClickException):

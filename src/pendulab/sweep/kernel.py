@@ -26,6 +26,7 @@ from concurrent.futures import ThreadPoolExecutor
 import numpy as np
 from numba import get_num_threads, njit
 
+from .._interrupt import pieces, run_pieces
 from .._kernels import FOUND, LEFT_OSCILLATION, NO_RETURN, TAYLOR2, TOO_EARLY, first_return
 
 
@@ -200,8 +201,15 @@ def first_returns(method, order, alphas, cs, h, n_steps, threads: int | None = N
         return first_returns_lanes(a, c, h, n) if lanes else first_returns_serial(method, order, a, c, h, n)
 
     m = len(alphas)
-    if threads <= 1 or m <= BLOCK:
-        out = kernel(alphas, cs, n_steps)
+    if threads <= 1 or m <= BLOCK:  # in this thread: blocks, with Ctrl+C waiting for one at most
+        parts: list = []
+
+        def run(lo: int, hi: int) -> bool:
+            parts.append(kernel(alphas[lo:hi], cs[lo:hi], n_steps[lo:hi]))
+            return False
+
+        run_pieces(pieces(max(m, 1), BLOCK), run)
+        out = tuple(np.concatenate([p[k] for p in parts]) for k in range(4)) if len(parts) > 1 else parts[0]
     else:
         if not _POOL or _POOL[0]._max_workers != threads:
             _POOL[:] = [ThreadPoolExecutor(threads, thread_name_prefix="pendulab-sweep")]

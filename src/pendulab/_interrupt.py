@@ -1,0 +1,88 @@
+"""Ctrl+C and SIGTERM around compiled kernels: recorded while a kernel runs, raised after it.
+
+Python runs a signal's handler in the main thread at the next point where the interpreter
+checks for one, and numba's conversion of a kernel's result to Python objects is such a
+point: a ``KeyboardInterrupt`` raised there leaves the result half built (a
+``SystemError``, or a crash). :func:`deferred` replaces the handlers of SIGINT and SIGTERM
+by one that only records the signal, the drivers run their kernels in chunks and look at
+the record between them (:func:`run_pieces`), and on leaving the original handlers are
+put back and the signal is delivered again, in plain Python code.
+
+:class:`Terminated` is what the CLI's SIGTERM handler raises (:func:`terminate_handler`):
+like Ctrl+C it unwinds, so ``finally`` blocks and temporary folders are cleaned up.
+"""
+from __future__ import annotations
+
+import contextlib
+import signal
+import threading
+from collections.abc import Callable, Iterable, Iterator
+
+_SIGNALS = (signal.SIGINT, signal.SIGTERM)
+
+
+class Terminated(KeyboardInterrupt):
+    """SIGTERM, raised like Ctrl+C's ``KeyboardInterrupt`` so that the same cleanup runs."""
+
+
+def terminate_handler(signum: int, frame: object) -> None:
+    """A SIGTERM handler that raises :class:`Terminated` (installed by the CLI)."""
+    raise Terminated()
+
+
+@contextlib.contextmanager
+def deferred() -> Iterator[list[int]]:
+    """Inside, SIGINT and SIGTERM are only recorded (in the list yielded); on leaving, the
+    original handlers are restored and the first recorded signal is raised again.
+
+    Only the handlers that end the work are replaced (Python's ``KeyboardInterrupt``,
+    :func:`terminate_handler`, the default action): a recorded signal always ends it.
+
+    Outside the main thread (a web server's worker) signals never run there: nothing changes.
+    """
+    got: list[int] = []
+    if threading.current_thread() is not threading.main_thread():
+        yield got
+        return
+
+    def record(signum: int, frame: object) -> None:
+        got.append(signum)
+
+    old = {}
+    try:
+        for s in _SIGNALS:
+            if signal.getsignal(s) in (signal.default_int_handler, terminate_handler, signal.SIG_DFL):
+                old[s] = signal.signal(s, record)  # only handlers that end the work: an ignored
+        yield got  # signal, or a handler of the program's own, is left as it is
+    finally:
+        for s, handler in old.items():
+            signal.signal(s, handler)
+        if got:  # delivered again to the original handler, now in plain Python code
+            signal.raise_signal(got[0])
+
+
+#: Steps of (3) per piece of a long kernel run (:func:`run_pieces`): 4 * 10^6 steps, tens
+#: of ms (5-20 ns a step, ``benchmarks/method_cost.py``); a Python call per piece is nothing beside it.
+CHUNK_COST = 1 << 22
+
+
+def pieces(n: int, size: int, stride: int = 1) -> Iterator[tuple[int, int]]:
+    """``[0, n)`` cut into ``(lo, hi)`` of at most ``size`` steps; where ``size < stride``,
+    no piece crosses a multiple of ``stride`` (a thinned run keeps the point there)."""
+    lo = 0
+    while lo < n:
+        hi = min(lo + size, n)
+        if size < stride:
+            hi = min(hi, (lo // stride + 1) * stride)
+        yield lo, hi
+        lo = hi
+
+
+def run_pieces(bounds: Iterable[tuple[int, int]], run: Callable[[int, int], bool]) -> None:
+    """Call ``run(lo, hi)`` for each piece, under :func:`deferred`: a signal stops the loop
+    between two pieces (one piece's time at most) and is raised then. ``run`` returns True
+    when the work is finished early (a period search that found the return)."""
+    with deferred() as got:
+        for lo, hi in bounds:
+            if got or run(lo, hi):
+                return

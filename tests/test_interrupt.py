@@ -1,0 +1,181 @@
+"""Interrupted runs: long kernels cut into pieces give the same bits, and a real Ctrl+C or
+SIGTERM sent to a real ``pendulab`` process ends it with one line and 130 or 143."""
+from __future__ import annotations
+
+import os
+import signal
+import subprocess
+import sys
+import time
+
+import numpy as np
+import pytest
+from hypothesis import given, settings
+from hypothesis import strategies as st
+
+from pendulab import _kernels
+from pendulab._interrupt import deferred, pieces
+
+METHODS = [(0, 2), (1, 4), (2, 2), (3, 1), (3, 5), (3, 12)]  # taylor2, rk4, verlet, taylor:1, 5, 12
+
+
+def _one_call(method, order, alpha, c, h, n):
+    """The whole run in one kernel call: the reference for the pieces."""
+    z1, z2 = np.empty(n + 1), np.empty(n + 1)
+    if _kernels.fast_pays(method, c, h, n):
+        _kernels.fill_trajectory_fast(alpha, c, h, z1, z2)
+    else:
+        _kernels.fill_trajectory(method, order, alpha, c, h, z1, z2)
+    return z1, z2
+
+
+@settings(max_examples=25, deadline=None)
+@given(m=st.sampled_from(METHODS), alpha=st.floats(0.01, 3.1), h=st.floats(1e-3, 0.3),
+       n=st.integers(0, 700), stride=st.integers(1, 900), piece=st.integers(1, 300))
+def test_pieces_give_the_same_bits_as_one_call(m, alpha, h, n, stride, piece):
+    """trajectory, thinned and the period search, cut into pieces of any size (here a few
+    steps, so that a run has many), equal one call of the kernel over the whole run."""
+    method, order = m
+    c = -9.80665 / 2.0
+    ref1, ref2 = _one_call(method, order, alpha, c, h, n)
+    one = _kernels.first_return(method, order, alpha, c, h, n)
+    with pytest.MonkeyPatch.context() as mp:
+        mp.setattr(_kernels, "CHUNK_COST", piece * 50)  # pieces of piece * 50 / cost steps
+        _cut(method, order, alpha, c, h, n, stride, ref1, ref2, one)
+
+
+def _cut(method, order, alpha, c, h, n, stride, ref1, ref2, one):
+    z1, z2 = _kernels.trajectory(method, order, alpha, c, h, n)
+    assert np.array_equal(z1, ref1, equal_nan=True) and np.array_equal(z2, ref2, equal_nan=True)
+    keep = np.r_[np.arange(0, n + 1, stride), [n] if n % stride else []].astype(int)
+    t1, t2 = _kernels.thinned(method, order, alpha, c, h, n, stride, len(keep))
+    assert np.array_equal(t1, ref1[keep], equal_nan=True) and np.array_equal(t2, ref2[keep], equal_nan=True)
+    cut = _kernels.first_return_pieces(method, order, alpha, c, h, n)
+    assert cut[0] == one[0] and cut[1] == one[1]
+    assert np.array_equal(cut[2], one[2]) and np.array_equal(cut[3], one[3])
+
+
+def test_fast_kernels_in_pieces_give_the_same_bits(monkeypatch):
+    """(3) long and fine runs through the table's sine (fast_pays), in pieces."""
+    alpha, c, h, n = 2.5, -9.80665 / 2.0800838231, 1e-5, _kernels.FAST_MIN_STEPS + 1234
+    assert _kernels.fast_pays(0, c, h, n)
+    ref1, ref2 = _one_call(0, 2, alpha, c, h, n)
+    monkeypatch.setattr(_kernels, "CHUNK_COST", 9973)
+    z1, z2 = _kernels.trajectory(0, 2, alpha, c, h, n)
+    assert np.array_equal(z1, ref1) and np.array_equal(z2, ref2)
+    for stride in (7, 9973, 50_000):
+        keep = np.r_[np.arange(0, n + 1, stride), [n] if n % stride else []].astype(int)
+        t1, t2 = _kernels.thinned(0, 2, alpha, c, h, n, stride, len(keep))
+        assert np.array_equal(t1, ref1[keep]) and np.array_equal(t2, ref2[keep])
+
+
+@given(n=st.integers(0, 500), size=st.integers(1, 60), stride=st.integers(1, 90))
+def test_pieces_cover_the_run_and_never_cross_a_kept_point(n, size, stride):
+    bounds = list(pieces(n, size, stride))
+    assert [lo for lo, _ in bounds] == ([0] + [hi for _, hi in bounds[:-1]] if n else [])
+    assert (bounds[-1][1] if bounds else 0) == n
+    for lo, hi in bounds:
+        assert 0 < hi - lo <= size
+        if size < stride:
+            assert (hi - 1) // stride == lo // stride or hi % stride == 0
+
+
+def test_a_signal_inside_deferred_is_raised_after_it():
+    """The handler only records; the signal reaches Python's own handler on leaving."""
+    ran_after = []
+    with pytest.raises(KeyboardInterrupt), deferred() as got:
+        signal.raise_signal(signal.SIGINT)
+        ran_after.append(list(got))  # no exception inside: the work finishes its piece
+    assert ran_after == [[signal.SIGINT]]
+    assert signal.getsignal(signal.SIGINT) is signal.default_int_handler
+
+
+def test_an_ignored_signal_stays_ignored():
+    """A signal ignored by the program (SIG_IGN) is not recorded: the work is not cut short."""
+    old = signal.signal(signal.SIGINT, signal.SIG_IGN)
+    try:
+        with deferred() as got:
+            signal.raise_signal(signal.SIGINT)
+        assert got == []
+    finally:
+        signal.signal(signal.SIGINT, old)
+
+
+# --- A real signal to a real process --------------------------------------------------------
+
+
+def _signal_run(args, delay, sig, tmp_path):
+    """Start ``pendulab ARGS`` with its own TMPDIR, send ``sig`` after ``delay`` s; return
+    (exit status, stderr)."""
+    tmpdir = tmp_path / "tmp"
+    tmpdir.mkdir(exist_ok=True)
+    env = {**os.environ, "TMPDIR": str(tmpdir), "PYTHONUNBUFFERED": "1"}
+    proc = subprocess.Popen([sys.executable, "-m", "pendulab", *map(str, args)], cwd=tmp_path, env=env,
+                            stdout=subprocess.DEVNULL, stderr=subprocess.PIPE, text=True)
+    time.sleep(delay)
+    proc.send_signal(sig)
+    _, err = proc.communicate(timeout=120)
+    assert list(tmpdir.iterdir()) == [], "a temporary file or folder was left"
+    return proc.returncode, err
+
+
+def _assert_stopped(code, err, sig, command):
+    """One line, the exit status of the signal, no traceback (or the run had finished)."""
+    if code == 0:  # finished before the signal: nothing to check
+        return False
+    word, status = ("interrupted", 130) if sig == signal.SIGINT else ("terminated", 143)
+    assert code == status, (code, err)
+    # "pendulab: interrupted" where Ctrl+C came while the command line was loading
+    assert err.splitlines() in ([f"pendulab {command}: {word}"], [f"pendulab: {word}"]), err
+    return True
+
+
+ESTIMATE = ["estimate", "-l", "1", "-a", "2", "--step", "1e-3,2e-8"]  # about 4 * 10^8 steps
+
+
+@pytest.mark.parametrize(("args", "tries"), [
+    (ESTIMATE, 12),
+    (ESTIMATE[:-1] + ["1e-3,5e-8", "--method", "rk4", "--dense"], 6),
+    (["simulate", "--step", "1e-6", "--t-max", "300", "--csv"], 4),
+    (["sweep", "--amplitude", "0.1:3:200", "--step", "1e-5", "--method", "taylor:8"], 4),
+])
+def test_ctrl_c_mid_run_ends_with_one_line_and_130(tmp_path, args, tries):
+    """Ctrl+C at varied moments (while Python starts, while the kernel runs, while its result
+    is converted): exit 130 and one line, never a crash (139) or a SystemError."""
+    stopped = 0
+    for i in range(tries):
+        code, err = _signal_run(args, 0.4 + 5.0 * i / tries, signal.SIGINT, tmp_path)
+        stopped += _assert_stopped(code, err, signal.SIGINT, args[0])
+    assert stopped >= tries // 2  # most tries did land mid-run
+
+
+def test_sigterm_mid_run_ends_with_one_line_and_143(tmp_path):
+    for i in range(6):
+        code, err = _signal_run(ESTIMATE, 0.5 + 0.8 * i, signal.SIGTERM, tmp_path)
+        _assert_stopped(code, err, signal.SIGTERM, "estimate")
+
+
+def test_an_interrupted_key_keeps_the_old_output_and_leaves_no_temporary_file(tmp_path):
+    """key on many groups, stopped by SIGINT or SIGTERM: the older key intact, nothing left beside it."""
+    groups = tmp_path / "groups.txt"
+    groups.write_text("\n".join(f"{100 + i} {200 + 3 * i} {300 + 7 * i}" for i in range(400)) + "\n")
+    out = tmp_path / "key.csv"
+    out.write_text("old key\n")
+    for i, sig in enumerate([signal.SIGINT, signal.SIGTERM] * 3):
+        code, err = _signal_run(["key", "--groups", groups, "--output", out], 1.0 + 0.7 * i, sig, tmp_path)
+        if _assert_stopped(code, err, sig, "key"):
+            assert out.read_text() == "old key\n"
+        assert sorted(p.name for p in tmp_path.iterdir()) == ["groups.txt", "key.csv", "tmp"]
+        out.write_text("old key\n")
+
+
+def test_sigterm_during_report_leaves_no_temporary_folder(tmp_path):
+    pytest.importorskip("typst")
+    out = tmp_path / "report.pdf"
+    out.write_bytes(b"old report")
+    for delay in (3.0, 6.0, 9.0):
+        code, err = _signal_run(["report", "--output", out], delay, signal.SIGTERM, tmp_path)
+        if _assert_stopped(code, err, signal.SIGTERM, "report"):
+            assert out.read_bytes() == b"old report"
+        assert sorted(p.name for p in tmp_path.iterdir()) == ["report.pdf", "tmp"]
+        out.write_bytes(b"old report")
