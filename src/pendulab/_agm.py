@@ -27,6 +27,10 @@ from llvmlite import ir  # type: ignore[import-untyped]
 from numba import njit, types
 from numba.extending import intrinsic
 
+from . import _numba_cache
+
+_numba_cache.setup(__file__)  # before the first cache=True: a read-only install falls back
+
 #: Amplitudes per block (one iteration count per block).
 BLOCK = 32
 #: Relative error bound of ``th + tl``. Derived: ``cos(alpha/2)`` within 2^-89

@@ -433,3 +433,21 @@ def output_path(name: str, text: object, extensions: Iterable[str]) -> Path:
     if p.suffix.lower() not in exts:
         raise InputError(name, shown(s), allowed)
     return p
+
+
+#: The latest ``SOURCE_DATE_EPOCH`` accepted: 9999-12-31 23:59:59 UTC, the last second
+#: Python's ``datetime`` (which matplotlib uses for a figure's date) can hold.
+MAX_EPOCH = 253402300799
+
+
+def source_date_epoch(text: str | None) -> int | None:
+    """The ``SOURCE_DATE_EPOCH`` environment variable (reproducible-builds.org): seconds since
+    1970-01-01 UTC as ASCII digits, in ``[0, MAX_EPOCH]``; None where unset or empty (as
+    matplotlib reads it). Anything else is refused here, before matplotlib or Typst sees it."""
+    if text is None or text == "":
+        return None
+    s = text.strip()
+    if not (s.isascii() and s.isdigit() and len(s) <= 12 and int(s) <= MAX_EPOCH):
+        raise InputError("SOURCE_DATE_EPOCH", shown(text),
+                         f"an integer number of seconds since 1970-01-01 UTC, 0 to {MAX_EPOCH} (or unset)")
+    return int(s)

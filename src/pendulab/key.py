@@ -9,6 +9,7 @@ from __future__ import annotations
 
 import math
 import os
+import sys
 from collections.abc import Sequence
 from dataclasses import dataclass
 from decimal import Decimal
@@ -21,8 +22,15 @@ from .period import FIXED_ITERATIONS_ULPS
 
 #: Output formats by file extension.
 FORMATS = ("csv", "json", "pdf")
-#: The largest groups file read (a class of thousands of groups is a few hundred kB).
+#: The largest groups file read (a class of thousands of groups is a few hundred kB):
+#: a file that is not a regular file (a pipe, a device) is read up to this many bytes too.
 MAX_FILE_BYTES = 10**7
+#: The most groups in one key. Each costs about 13 ms of work and 230 kB of PDF
+#: (``benchmarks/key_cost.py``): 1000 groups take about 15 s.
+MAX_GROUPS = 1000
+#: Seconds a pipe or device may stay silent while its groups are read (a named pipe that
+#: no program writes to is empty at once; a terminal, or a writer that never writes, waits).
+READ_TIMEOUT = 10.0
 
 
 #: A line's names follow its numbers after this separator: ``262, 407, 634 | Ana; João; Maria``.
@@ -48,11 +56,15 @@ def parse_entries(text: str, source: str = "groups") -> list[Entry]:
     """
     from .group import group_length
 
-    entries = []
+    entries: list[Entry] = []
+    text = text.removeprefix("\ufeff")  # the byte order mark that Notepad and Excel write
     for number, raw in enumerate(text.splitlines(), start=1):
         line = raw.split("#", 1)[0].strip()
         if not line:
             continue
+        if len(entries) == MAX_GROUPS:
+            raise InputError("groups", source, f"a file of at most {MAX_GROUPS} groups (line {number} "
+                                               f"starts group {MAX_GROUPS + 1}); split the class into several keys")
         numbers, sep, names_text = line.partition(NAMES_SEPARATOR)
         try:
             students = inputs.students("groups", numbers.strip())  # the CLI's grammar of student numbers
@@ -72,16 +84,66 @@ def parse_groups(text: str, source: str = "groups") -> list[tuple[int, ...]]:
 
 
 def read_entries(path: str | os.PathLike) -> list[Entry]:
-    """The groups of the file ``path`` (see :func:`parse_entries`)."""
-    p = Path(path)
+    """The groups of the file ``path`` (see :func:`parse_entries`); ``-`` is standard input.
+
+    Whatever ``path`` is, at most :data:`MAX_FILE_BYTES` bytes are read: a regular file
+    is refused by its size, a pipe or a device (``/dev/zero``) once it gives more; a named
+    pipe is opened without waiting for a writer, and one that stays silent for
+    :data:`READ_TIMEOUT` seconds is refused. A UTF-8 byte order mark is skipped.
+    """
+    shown = inputs.shown(str(path))
     try:
-        if p.is_file() and p.stat().st_size > MAX_FILE_BYTES:  # by its size, before reading it
-            raise InputError("groups", inputs.shown(str(path)), f"a file of at most {MAX_FILE_BYTES:.0e} bytes")
-        text = p.read_text(encoding="utf-8")
+        data = _read_capped(str(path))
+        text = data.decode("utf-8")
+    except TimeoutError:  # an OSError: told first
+        raise InputError("groups", shown, f"a file that can be read (nothing came in {READ_TIMEOUT:g} s)") from None
     except (OSError, UnicodeDecodeError) as exc:
         reason = exc.strerror if isinstance(exc, OSError) and exc.strerror else type(exc).__name__
-        raise InputError("groups", inputs.shown(str(path)), f"a readable UTF-8 text file ({reason})") from None
+        raise InputError("groups", shown, f"a readable UTF-8 text file ({reason})") from None
+    except _TooBig:
+        raise InputError("groups", shown, f"a file of at most {MAX_FILE_BYTES:.0e} bytes") from None
     return parse_entries(text, str(path))
+
+
+class _TooBig(Exception):
+    """More than :data:`MAX_FILE_BYTES` bytes."""
+
+
+def _read_capped(path: str) -> bytes:
+    """At most :data:`MAX_FILE_BYTES` bytes of ``path`` (``-``: standard input), see :func:`read_groups`."""
+    import select
+    import stat
+
+    if path == "-":
+        data = sys.stdin.buffer.read(MAX_FILE_BYTES + 1)
+        if len(data) > MAX_FILE_BYTES:
+            raise _TooBig
+        return data
+    fd = os.open(path, os.O_RDONLY | os.O_NONBLOCK)  # a named pipe: no wait for a writer
+    try:
+        st = os.fstat(fd)
+        if stat.S_ISDIR(st.st_mode):
+            raise IsADirectoryError(21, "a folder, not a file")
+        if stat.S_ISREG(st.st_mode):
+            if st.st_size > MAX_FILE_BYTES:  # by its size, before reading it
+                raise _TooBig
+            os.set_blocking(fd, True)
+        chunks: list[bytes] = []
+        size = 0
+        while size <= MAX_FILE_BYTES:
+            try:
+                chunk = os.read(fd, min(1 << 20, MAX_FILE_BYTES + 1 - size))
+            except BlockingIOError:  # a pipe or device with nothing to read yet
+                if not select.select([fd], [], [], READ_TIMEOUT)[0]:
+                    raise TimeoutError from None
+                continue
+            if not chunk:
+                return b"".join(chunks)
+            chunks.append(chunk)
+            size += len(chunk)
+        raise _TooBig
+    finally:
+        os.close(fd)
 
 
 def read_groups(path: str | os.PathLike) -> list[tuple[int, ...]]:

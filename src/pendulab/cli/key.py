@@ -11,7 +11,8 @@ from ._common import Parsed, output
 @click.option("--groups", "groups_file", required=True, type=Parsed(lambda s: inputs.path_text("groups", s), "file"),
               help="A text file, one group per line: student numbers separated by commas or spaces, "
                    "optionally followed by '|' and the students' names separated by ';' "
-                   "(262, 407, 634 | Ana Sá; João Simões; Maria Luís). Blank lines and # comments allowed.")
+                   "(262, 407, 634 | Ana Sá; João Simões; Maria Luís). Blank lines and # comments allowed; "
+                   "- reads standard input. At most 1000 groups.")
 @click.option("--output", "-o", default=None, type=output(".csv", ".json", ".pdf"),
               help="Write the key to this file: .csv (one row per group; the class-wide answers and "
                    "the marking tolerances go to NAME-class.csv beside it), .json or .pdf (atomically).")
@@ -19,7 +20,7 @@ from ._common import Parsed, output
 def key(groups_file: str, output: str | None, as_json: bool) -> None:
     """The answers of every group (problem 3) and the common answers (problems 1, 2, 4, 5) once."""
     from .. import key as answer
-    from .._atomic import check_writable
+    from .._atomic import check_not_input, check_writable
     from ._common import emit_json
 
     # Every input checked before the work: the whole file, the output path and format.
@@ -27,6 +28,11 @@ def key(groups_file: str, output: str | None, as_json: bool) -> None:
     if output is not None:
         fmt = answer.output_format(output)
         check_writable("output", output)
+        if fmt == "csv":
+            check_writable("output", answer.class_path(output))  # written beside it
+        if groups_file != "-":
+            for path in (output, answer.class_path(output)) if fmt == "csv" else (output,):
+                check_not_input("output", path, "groups", groups_file)
         if fmt == "pdf":
             from .._extras import require
 

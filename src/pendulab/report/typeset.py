@@ -15,10 +15,11 @@ DEFAULT_DATE = (2020, 1, 6)  # the coursework's deadline
 
 
 def timestamp() -> int:
-    epoch = os.environ.get("SOURCE_DATE_EPOCH")
-    if epoch and epoch.strip().isdigit():
-        return int(epoch)
-    return calendar.timegm((*DEFAULT_DATE, 12, 0, 0))
+    """The document's date: ``SOURCE_DATE_EPOCH`` where set (checked), else :data:`DEFAULT_DATE`."""
+    from ..inputs import source_date_epoch
+
+    epoch = source_date_epoch(os.environ.get("SOURCE_DATE_EPOCH"))
+    return calendar.timegm((*DEFAULT_DATE, 12, 0, 0)) if epoch is None else epoch
 
 
 #: The scripts the embedded fonts cover (code point ranges): Latin, IPA, combining marks,
