@@ -356,7 +356,7 @@ def test_a_scheduler_port_that_is_not_dask_is_one_line(cli, monkeypatch, reply):
         for c in held:
             c.close()
     assert_one_line_error(res, "--scheduler", "reachable Dask scheduler")
-    assert time.monotonic() - t < 20
+    assert time.monotonic() - t < 60  # without the bound: for ever
 
 
 # --- Finding 5 (CLI): work weighed by the method's cost --------------------------------------------

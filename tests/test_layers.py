@@ -21,9 +21,9 @@ PACKAGE = "pendulab"
 
 #: The layers, bottom first. A name covers the module and, for a package, every module in it.
 LAYERS: dict[str, tuple[str, ...]] = {
-    "base": ("errors", "exact", "cases", "methods", "constants", "_version", "_atomic", "_extras"),
+    "base": ("errors", "exact", "cases", "methods", "constants", "_version", "_atomic", "_extras", "_interrupt"),
     "boundary": ("inputs", "_validate"),
-    "kernels": ("_kernels", "_agm", "_libm", "_warm"),
+    "kernels": ("_kernels", "_agm", "_libm", "_warm", "_numba_cache"),
     "numerics": ("results", "period", "taylor", "crossing", "dense", "interpolation", "newton", "lsq",
                  "quadrature", "uncertainty", "motion", "launched", "approximations", "group"),
     "jobs": ("problems", "key", "sweep", "coursework"),

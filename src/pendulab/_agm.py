@@ -27,9 +27,9 @@ from llvmlite import ir  # type: ignore[import-untyped]
 from numba import njit, types
 from numba.extending import intrinsic
 
-from . import _numba_cache
+from ._numba_cache import setup as cache_setup
 
-_numba_cache.setup(__file__)  # before the first cache=True: a read-only install falls back
+cache_setup(__file__)  # before the first cache=True: a read-only install falls back
 
 #: Amplitudes per block (one iteration count per block).
 BLOCK = 32
