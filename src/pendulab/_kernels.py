@@ -14,8 +14,8 @@ from numba import njit, prange, types
 from numba.extending import intrinsic
 
 from ._agm import COS_HI, N_TABLE, PI_HI, SIN_HI
-from ._libm import cos, sin
 from ._interrupt import CHUNK_COST, pieces, run_pieces
+from ._libm import cos, sin
 from .methods import MAX_TAYLOR_ORDER, Kernel, Status, cost_per_step
 
 #: Method codes understood by :func:`step` (the registry's, as plain ints for numba).
