@@ -839,3 +839,23 @@ def test_a_launch_goes_over_the_top_and_the_exact_motion_follows(page, server):
     page.fill("#omega0", "fast")
     page.wait_for_selector("#omega0-error:not([hidden])")
     assert page.locator("#omega0-error").text_content().startswith("omega0 = fast")
+
+
+def test_zoom_fetches_finer_data(browser, server):
+    # 2000 s in 1500 columns: a window of 20 s holds 15 of them; zoomed, it gets about 1500.
+    context, pg = open_page(browser, server, LONG_RUN)
+    try:
+        in_window = "document.getElementById('plot-theta').data[0].x.filter(t => t <= 20).length"
+        before = pg.evaluate(in_window)
+        pg.evaluate("Plotly.relayout('plot-theta', {'xaxis.range': [0, 20]})")
+        pg.wait_for_function(f"{in_window} > 1000", timeout=30_000)
+        assert before < 100
+        d = drawn(pg, "plot-theta")
+        t, theta = np.array(d["x"], dtype=float), np.array(d["y"], dtype=float)
+        full = taylor.simulate(1, math.radians(30), 1e-3, 20.0)
+        steps = np.rint(t / 1e-3).astype(int)
+        assert np.allclose(theta, full.theta[steps], rtol=0, atol=1e-12)  # the simulation's values at those steps
+        assert d["xr"] == pytest.approx([0, 20])  # the view stays where it was zoomed
+        assert "Zoomed" in pg.locator("#status").text_content()
+    finally:
+        context.close()

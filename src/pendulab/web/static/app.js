@@ -367,6 +367,7 @@ function plot(id, traces, lay) {
     if (!gd.dataset.hooked) {  // the cursor's place follows every redraw (zoom, resize)
       gd.dataset.hooked = "1";
       gd.on("plotly_afterplot", () => { measure(gd); moveCursors(); });
+      if (id === "plot-theta") gd.on("plotly_relayout", zoomTheta);
     }
     measure(gd);
     moveCursors();
@@ -437,6 +438,30 @@ function renderTheta() {
   }
   const title = marks <= MAX_PERIOD_MARKS ? "Angle θ(t)" : `Angle θ(t): ${marks.toLocaleString("en")} periods of T = ${T.toPrecision(6)} s`;
   plot("plot-theta", traces, layout(title, "t (s)", "θ (rad)", { shapes, annotations, ...twoLines(traces) }));
+}
+
+// Zoom on θ(t) fetches finer data: the server keeps each column's min and max over 0..t_max,
+// so a run to the window's end with more columns gives the window about PLOT_POINTS of its own.
+async function zoomTheta(ev) {
+  if (!sims.a) return;
+  const range = ev["xaxis.range"] || [ev["xaxis.range[0]"], ev["xaxis.range[1]"]];
+  if (ev["xaxis.autorange"]) { if (sims.zoomed) { sims.zoomed = false; renderTheta(); } return; }
+  if (range[0] === undefined || range[1] === undefined) return;
+  const s = sims.a, tMax = s.input.t_max;
+  const t0 = Math.max(0, Math.min(range[0], range[1])), t1 = Math.min(tMax, Math.max(range[0], range[1]));
+  if (!(t1 > t0) || !(t1 > 2 * s.input.step) || s.thinning === "none") return;
+  const points = Math.min(config.limits.max_points, Math.ceil(PLOT_POINTS * t1 / (t1 - t0)));
+  if (points <= PLOT_POINTS && t1 >= tMax) return;  // the whole run: nothing finer to fetch
+  const my = seq;
+  const r = await getJSON("/api/simulate?" + apiQuery("a", { points, t_max: String(t1) }));
+  if (my !== seq || !r.ok) return;
+  const gd = $("plot-theta"), z = r.body;
+  const update = { x: [z.t], y: [z.theta] }, traces = [0];
+  if (view.exact) { update.x.push(z.exact.t); update.y.push(z.exact.theta); traces.push(1); }
+  sims.zoomed = true;
+  await Plotly.restyle(gd, update, traces);
+  const inView = z.t.filter((t) => t >= t0 && t <= t1).length;
+  $("status").textContent = `Zoomed: θ(t) from a run to t = ${short(t1)} s, ${inView.toLocaleString("en")} points in view.`;
 }
 
 function renderPhase() {
