@@ -18,6 +18,17 @@ SLOW_FILES = frozenset({
 #: large search, a CLI in a subprocess, a figure saved as PDF, a Dask cluster. Each entry is
 #: ``file::test`` and covers every parametrisation of that test.
 SLOW_TESTS = frozenset({
+    "test_interrupt.py::test_ctrl_c_mid_run_ends_with_one_line_and_130",
+    "test_interrupt.py::test_sigterm_mid_run_ends_with_one_line_and_143",
+    "test_interrupt.py::test_an_interrupted_key_keeps_the_old_output_and_leaves_no_temporary_file",
+    "test_interrupt.py::test_sigterm_during_report_leaves_no_temporary_folder",
+    "test_hostile_env.py::test_groups_from_a_named_pipe_with_no_writer_do_not_hang",
+    "test_hostile_env.py::test_endless_standard_input_is_capped",
+    "test_hostile_env.py::test_groups_from_standard_input",
+    "test_hostile_env.py::test_a_full_disk_on_stdout_is_one_line",
+    "test_hostile_env.py::test_a_closed_pipe_on_stdout_is_one_line",
+    "test_hostile_env.py::test_a_read_only_install_falls_back_and_a_corrupt_cache_is_rebuilt",
+    "test_hostile_env.py::test_a_scheduler_port_that_is_not_dask_is_one_line",
     "test_agm_rounding.py::test_extreme_lengths_and_g_give_representable_periods",
     "test_agm_rounding.py::test_2000_random_pendulums_are_correctly_rounded",
     "test_agm_rounding.py::test_half_angle_cos_is_accurate_to_double_double",
