@@ -19,6 +19,7 @@ within 700 ms of typing, 60 frames a second. Run: ``.venv/bin/python benchmarks/
 """
 from __future__ import annotations
 
+import os
 import statistics
 import sys
 from pathlib import Path
@@ -111,6 +112,8 @@ def main() -> None:
         to_period, to_plot, spent, fps = typing(browser, base)
         browser.close()
     med = statistics.median
+    print(f"load average {os.getloadavg()[0]:.2f} (1 min) after the run, {os.cpu_count()} CPUs: "
+          "times are only comparable between runs at a similar load")
     gz_bytes, plain_bytes = med(r[0] for r in gz), med(r[0] for r in plain)
     print(f"cold page load, problem 5's pendulum, 1400x900, median of {COLD} loads")
     print(f"{'':34} {'wire kB':>9} {'period ms':>10} {'1st plot ms':>12} {'bytes ratio':>12}")

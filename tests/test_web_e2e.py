@@ -828,6 +828,8 @@ def test_a_launch_goes_over_the_top_and_the_exact_motion_follows(page, server):
                     method="DOP853", rtol=1e-12, atol=1e-12, t_eval=t)
     assert np.max(np.abs(th - sol.y[0])) < 1e-7 and th[-1] > 2 * math.pi * 15
     assert parse_qs(urlparse(page.url).query)["omega0"] == ["7"]
+    release = page.evaluate("document.getElementById('plot-phase').data.find(t => t.name.startsWith('P ='))")
+    assert release["x"] == [pytest.approx(math.radians(17))] and release["y"] == [7]  # released at (alpha, omega0)
     # Less of it: it swings, to its turning angle 2 asin(k), and sits there on the T(alpha)/T0 curve.
     page.fill("#omega0", "2")
     page.wait_for_selector("#period-label:has-text('turning angle')")

@@ -331,7 +331,7 @@ function renderPeriods() {
   const p = sims.a.period;
   const L = sims.a.launch;
   $("period-label").textContent = !L ? "Exact (AGM, eq. 8)"
-    : L.circulates ? "Exact, one turn over the top (DLMF 22.19)" : `Exact, launched (turning angle ${short(L.turning_angle_deg)}°)`;
+    : L.circulates ? "Exact, one turn over the top (DLMF 22.19)" : `Exact, launched (turning angle ${L.turning_angle_deg.toPrecision(6)}°)`;
   $("period-exact").textContent = fix(p.period);
   $("period-small").textContent = fix(p.small_angle);
   $("period2-line").hidden = !sims.second;
@@ -482,12 +482,14 @@ function renderPhase() {
       name: "exact orbit", hovertemplate: "exact<br>θ = %{x:.5f} rad<br>θ′ = %{y:.5f} rad/s<extra></extra>" });
   }
   const lines = traces.length;
-  traces.push({ x: [a], y: [0], mode: "markers", marker: { symbol: "circle-open", size: 16, line: { width: 2.5, color: COLORS.p } },
-    name: "P = (α, 0)", showlegend: false, hovertemplate: "P = (α, 0)<br>α = %{x:.6f} rad<extra></extra>" });
+  // P: the release, (α, 0) at rest or (α, θ′₀) for a launch.
+  const w0 = s.launch ? s.launch.omega0 : 0;
+  traces.push({ x: [a], y: [w0], mode: "markers", marker: { symbol: "circle-open", size: 16, line: { width: 2.5, color: COLORS.p } },
+    name: "P = (α, θ′₀)", showlegend: false, hovertemplate: "P = (α, θ′₀)<br>α = %{x:.6f} rad<br>θ′₀ = %{y:.6f} rad/s<extra></extra>" });
   // One method has no legend: the title says which stretch of time the sampled orbits span.
   const title = s.phase.orbits > 1 ? `Phase portrait: ${s.phase.orbits} periods, 0 to ${short(s.phase.t_last)} s` : "Phase portrait (θ, θ′)";
   plot("plot-phase", traces, layout(title, "θ (rad)", "θ′ (rad/s)", {
-    annotations: [{ x: a, y: 0, text: "P", showarrow: true, arrowhead: 0, ax: 22, ay: -22, font: { color: COLORS.p } }],
+    annotations: [{ x: a, y: w0, text: "P", showarrow: true, arrowhead: 0, ax: 22, ay: -22, font: { color: COLORS.p } }],
     ...twoLines(traces.slice(0, lines)),
   }));
 }
