@@ -372,11 +372,15 @@ def test_a_list_of_tiny_steps_is_refused_before_the_work(cli):
 
 
 def test_limits_weigh_steps_by_the_methods_cost(cli):
-    """A list that taylor2 may run is refused for taylor:30, whose steps cost 40 times more."""
-    steps = "1e-6,2e-6"  # about 5e6 steps of taylor2 for T ~ 2.1 s
-    res = cli("estimate", "-a", "1", "-l", "1", "--t-max", "1000", "--step", steps, "--method", "taylor:30")
-    assert_one_line_error(res, "--step", "of taylor:30", "these need")
-    assert v.work_within("steps", steps, 1000 / 1e-6 + 1000 / 2e-6, "taylor2", 2e9)
+    """What taylor2 may run is refused for taylor:30, whose steps cost 40 times more: one run
+    of 10^9 steps, and a list of two runs each within one run's limit, too many together."""
+    limit = v.steps_for("taylor:30", 2e9)  # about 5e7 steps of taylor:30
+    assert 4e7 < limit < 6e7
+    res = cli("estimate", "-a", "1", "-l", "1", "--t-max", "1000", "--step", "1e-6", "--method", "taylor:30")
+    assert_one_line_error(res, "--step", "steps of taylor:30")
+    res = cli("estimate", "-a", "1", "-l", "1", "--t-max", "40", "--step", "1e-6,2e-6", "--method", "taylor:30")
+    assert_one_line_error(res, "--step = 1e-6 ", "of taylor:30", "these need 6e+07")
+    assert v.work_within("steps", "1e-6,2e-6", 40 / 1e-6 + 40 / 2e-6, "taylor2", 2e9)
 
 
 @settings(max_examples=200, deadline=None)

@@ -176,10 +176,11 @@ def estimate(length, amplitude, steps, t_max, method, dense, g, as_json):
     length = float(length) if length is not None else group_length(EXAMPLE_GROUP).length
     # The whole list's work, weighed by the method's cost, before the first run: at most
     # what one run may take (MAX_STEPS steps of (3)).
-    # A step whose own run is impossible (not finite) is left to estimate_period's message.
+    # A step whose own run is beyond one run's limit is left to estimate_period's message
+    # (which offers --t-max too); here the steps each within it, too many together.
     period = agm_period(length, float(amplitude), float(g))
     work = [(default_t_max(period, h) if t_max is None else float(t_max)) / h for h in steps]
-    if all(math.isfinite(w) for w in work):  # blamed: the step that needs the most
+    if all(math.isfinite(w) and w <= v.steps_for(method, MAX_STEPS) for w in work):  # blamed: the step that needs the most
         v.work_within("steps", max(zip(work, steps))[1], sum(work), method, MAX_STEPS)
     rows = [estimate_period(length, float(amplitude), h, t_max, 0.0, float(g), method) for h in steps]
     period = rows[0].period  # the AGM period (8), computed once by estimate_period
