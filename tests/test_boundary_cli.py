@@ -172,8 +172,6 @@ def _one_hostile_value(command, data):
         check([command, *BASE[command], option, value], {option: value})
 
 
-@settings(max_examples=40, deadline=30_000,
-          suppress_health_check=[HealthCheck.function_scoped_fixture, HealthCheck.too_slow])
 def integer_ranges() -> list[tuple[str, str, int]]:
     """(command, option, bound) for both ends of every integer option's range, read from click."""
     ends = []
@@ -193,6 +191,8 @@ def test_both_ends_of_every_integer_range_run(sandbox, command, option, bound):
     assert code == 0, (command, option, bound, err)
 
 
+@settings(max_examples=40, deadline=30_000,
+          suppress_health_check=[HealthCheck.function_scoped_fixture, HealthCheck.too_slow])
 @given(command=st.sampled_from(sorted(COMMANDS)), values=st.lists(HOSTILE, min_size=2, max_size=3))
 def test_several_hostile_values_at_once(sandbox, command, values):
     params = [p for p in value_params(command) if isinstance(p, click.Option)]
