@@ -144,7 +144,7 @@ def test_newton_plot_draws_the_corrections():
     r = problem2()
     fig, ax = plt.subplots()
     try:
-        assert newton_corrections(ax, r) is ax
+        assert newton_corrections(r, ax) is ax
         line = ax.lines[0]
         assert list(line.get_ydata()) == [abs(d) for d in r.run.corrections if d != 0]
     finally:

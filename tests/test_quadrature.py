@@ -203,7 +203,7 @@ def test_convergence_plot_draws_the_table():
     r = problem5(ns=(10, 100, 1000))
     fig, ax = plt.subplots()
     try:
-        assert quadrature_convergence(ax, r) is ax
+        assert quadrature_convergence(r, ax) is ax
         lines = ax.lines
         assert len(lines) == 3  # S_n, the slope guide, the substitution
         assert list(lines[0].get_ydata()) == [row.error for row in r.rows]

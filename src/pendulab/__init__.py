@@ -1,11 +1,47 @@
 """pendulab: the nonlinear simple pendulum and the numerical methods taught with it.
 
-The heavy modules (numba kernels, scipy, matplotlib) are imported only when used: the
-period functions too (PEP 562), so that the command line starts, and handles Ctrl+C,
-before numpy and numba load.
+The functions a notebook needs, importable from here::
+
+    from pendulab import agm_period, period_digits, simulate, estimate_period, problem1
+
+Each name loads its module on first use (PEP 562), so ``import pendulab`` imports neither
+numpy, numba nor scipy, and the command line starts, and handles Ctrl+C, before they load.
+Plots are in :mod:`pendulab.plots`.
 """
+from __future__ import annotations
+
+from importlib import import_module
+from typing import TYPE_CHECKING, Any
+
 from ._version import __version__
 from .errors import InputError, MissingExtraError, NumericalError, PendulabError
+
+if TYPE_CHECKING:
+    from .approximations import approximation_errors
+    from .crossing import estimate_period
+    from .group import group_length
+    from .motion import exact_motion, global_error
+    from .period import agm_period, period_digits, small_angle_period
+    from .problems import problem1, problem2, problem3, problem4, problem5
+    from .taylor import simulate
+
+# name -> the module that defines it, imported on first use (PEP 562).
+_WHERE = {
+    "agm_period": "period",
+    "period_digits": "period",
+    "small_angle_period": "period",
+    "simulate": "taylor",
+    "estimate_period": "crossing",
+    "group_length": "group",
+    "exact_motion": "motion",
+    "global_error": "motion",
+    "approximation_errors": "approximations",
+    "problem1": "problems",
+    "problem2": "problems",
+    "problem3": "problems",
+    "problem4": "problems",
+    "problem5": "problems",
+}
 
 __all__ = [
     "InputError",
@@ -14,20 +50,29 @@ __all__ = [
     "PendulabError",
     "__version__",
     "agm_period",
+    "approximation_errors",
+    "estimate_period",
+    "exact_motion",
+    "global_error",
+    "group_length",
     "period_digits",
+    "problem1",
+    "problem2",
+    "problem3",
+    "problem4",
+    "problem5",
+    "simulate",
     "small_angle_period",
 ]
 
-_LAZY = ("agm_period", "period_digits", "small_angle_period")
 
-
-def __getattr__(name: str) -> object:
-    if name in _LAZY:
-        from . import period
-
-        return getattr(period, name)
+def __getattr__(name: str) -> Any:
+    if name in _WHERE:
+        value = getattr(import_module(f"{__name__}.{_WHERE[name]}"), name)
+        globals()[name] = value
+        return value
     raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
 
 
 def __dir__() -> list[str]:
-    return sorted(set(globals()) | set(_LAZY))
+    return sorted(set(globals()) | set(__all__))

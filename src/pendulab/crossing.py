@@ -82,14 +82,17 @@ class PeriodEstimate(Result):
 
     @property
     def linear_error(self) -> float:
+        """``|linear - period|``: the error of the linear estimate, s (problem 3(c))."""
         return abs(self.linear - self.period)
 
     @property
     def dense_error(self) -> float:
+        """``|dense - period|``: the error of the dense-output estimate, s."""
         return abs(self.dense - self.period)
 
     @property
     def cubic_error(self) -> float:
+        """``|cubic - period|``: the error of the inverse-cubic estimate ``p(0)``, s (problem 3(c)-(d))."""
         return abs(self.cubic - self.period)
 
 

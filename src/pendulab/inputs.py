@@ -209,6 +209,59 @@ def quantity(name: str, text: object, units: dict[str, Fraction], default_unit: 
     return x
 
 
+# --------------------------------------------------------------------------- lengths and times
+#: Units a typed length or time may carry, as exact factors to metres and seconds.
+LENGTH_UNITS = {"m": Fraction(1), "cm": Fraction(1, 100), "mm": Fraction(1, 1000)}
+TIME_UNITS = {"s": Fraction(1), "ms": Fraction(1, 1000)}
+_UNIT_FORM = re.compile(rf"(?P<num>{_NUM}(?:\s*/\s*{_NUM})?)\s*(?P<unit>[a-z]+)", _FLAGS)
+
+
+def length(name: str, text: object) -> Exact:
+    """A length > 0 in metres, kept exactly: ``2.08``, ``1/3``, ``75cm``, ``0.75m``, ``750mm``."""
+    return _in_units(name, text, LENGTH_UNITS, positive, "a finite number > 0", _POSITIVE_BOUNDS)
+
+
+def duration(name: str, text: object) -> Exact:
+    """A time > 0 in seconds (a step, a period), kept exactly: ``0.01``, ``10ms``, ``2s``."""
+    return _in_units(name, text, TIME_UNITS, positive, "a finite number > 0", _POSITIVE_BOUNDS)
+
+
+def instant(name: str, text: object) -> Exact:
+    """A time in seconds, of any sign (a start or an end time): ``2.1``, ``2s``, ``-500ms``."""
+    return _in_units(name, text, TIME_UNITS, real, NUMBER_WORDS, _REAL_BOUNDS)
+
+
+_POSITIVE_BOUNDS = f"between {TINY:.4g} {{u}} and {HUGE:.4g} {{u}}"
+_REAL_BOUNDS = f"0 or of magnitude between 1e-{MAX_EXPONENT} {{u}} and {HUGE:.4g} {{u}}"
+
+
+def _in_units(name: str, text: object, units: dict[str, Fraction],
+              parse: Callable[[str, object, str], Exact], words: str, bounds: str) -> Exact:
+    """``parse`` of a number that may carry one of ``units``: the value in the first unit.
+
+    The number is checked by ``parse`` as typed; with a unit, its value in the first unit
+    is checked again against the doubles' range. The messages show the text with its unit.
+    """
+    si = next(iter(units))
+    allowed = f"{words}, optionally with a unit: {', '.join(units)} (default {si})"
+    ranged = f"{allowed}, {bounds.format(u=si)}"
+    s = clean(name, text, allowed)
+    m = _UNIT_FORM.fullmatch(s)
+    number_text, factor = (s, Fraction(1)) if m is None else (m["num"], units.get(m["unit"]))
+    if factor is None:
+        raise InputError(name, shown(s), allowed)
+    try:
+        number = parse(name, number_text, allowed)
+    except InputError as exc:  # out of range, or not a number of the kind asked for
+        raise InputError(name, shown(s), allowed if exc.allowed == allowed else ranged) from None
+    if m is None:
+        return number
+    x = Exact(number.coef * factor, 0, s)
+    if x.coef != 0 and not TINY <= abs(float(x)) <= HUGE:
+        raise InputError(name, shown(s), ranged)
+    return x
+
+
 # --------------------------------------------------------------------------- angles
 def angle_value(name: str, text: object) -> Exact:
     """Any angle, exactly, in radians: ``0.785``, ``pi/4``, ``4pi/5``, ``45deg``, ``45°``."""

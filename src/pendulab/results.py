@@ -2,12 +2,15 @@
 
 The results are frozen dataclasses that derive from :class:`Result`:
 
-- their arrays are read-only views (a result cannot be changed behind its back);
+- their arrays are read-only and cannot be made writeable again (a result cannot be
+  changed behind its back);
 - ``==`` is identity and ``hash()`` works (``eq=False``: arrays have no single truth value);
 - :meth:`Result.to_dict` gives the fields as a ``dict``;
 - :meth:`Result.to_frame` gives a pandas ``DataFrame`` (pandas is optional:
   ``pip install 'pendulab[pandas]'``); :func:`to_frame` does the same for a sequence of
   results, one row each (the rows of problems 3 and 5, a list of estimates);
+- :meth:`Result.derived` gives the values computed from the fields (``cubic_error``, ...),
+  which ``to_frame`` and the notebook view show after the fields;
 - in Jupyter a result shows itself as a table of its fields (``_repr_html_``).
 """
 from __future__ import annotations
@@ -24,12 +27,24 @@ __all__ = ["Result", "to_frame"]
 
 
 def _read_only(value: Any) -> Any:
-    """A read-only view of an array (the caller's own array keeps its flags)."""
-    if isinstance(value, np.ndarray) and value.flags.writeable:
+    """An array that no one can write to: a copy in an immutable ``bytes`` buffer, which
+    numpy refuses to flag writeable again (a read-only view could be). The caller's own
+    array is left as it is; an array already sealed this way is kept without a copy."""
+    if not isinstance(value, np.ndarray) or _sealed(value):
+        return value
+    if value.dtype.hasobject:  # no bytes for Python objects: a read-only view
         view = value.view()
         view.flags.writeable = False
         return view
-    return value
+    return np.frombuffer(value.tobytes(), dtype=value.dtype).reshape(value.shape)
+
+
+def _sealed(value: np.ndarray) -> bool:
+    """Whether ``value`` is read-only over memory that a ``bytes`` object owns."""
+    base: Any = value
+    while isinstance(base, np.ndarray):
+        base = base.base
+    return not value.flags.writeable and isinstance(base, bytes)
 
 
 class Result:
@@ -69,25 +84,37 @@ class Result:
         return None
 
     def _row(self) -> dict[str, Any]:
-        """The scalar fields (numbers, strings, pairs of numbers) of one table row."""
+        """The scalar fields (numbers, strings, pairs of numbers) of one table row, then the
+        scalar derived values (:meth:`derived`)."""
         row: dict[str, Any] = {}
         for f in dataclasses.fields(self):  # type: ignore[arg-type]
             value = getattr(self, f.name)
-            if isinstance(value, (bool, int, float, str, np.number)) or value is None:
+            if _scalar(value):
                 row[f.name] = value
             elif isinstance(value, tuple) and 0 < len(value) <= 3 and all(
                 isinstance(v, (int, float, np.number)) for v in value
             ):
                 for i, v in enumerate(value):
                     row[f"{f.name}_{i}"] = v
-        return row
+        return row | self.derived()
+
+    def derived(self) -> dict[str, Any]:
+        """The numbers computed from the fields (public properties such as ``cubic_error``),
+        by name. Words are left to the presenters: a property that gives a sentence is not one."""
+        out: dict[str, Any] = {}
+        for name in _properties(type(self)):
+            value = getattr(self, name)
+            if isinstance(value, (bool, int, float, np.number)) or value is None:
+                out[name] = value
+        return out
 
     def _repr_html_(self) -> str:
-        rows = "".join(
-            f"<tr><th style='text-align:left'>{html.escape(f.name)}</th>"
-            f"<td style='text-align:left'>{_html(getattr(self, f.name))}</td></tr>"
-            for f in dataclasses.fields(self)  # type: ignore[arg-type]
-        )
+        def row(name: str, value: Any, note: str = "") -> str:
+            return (f"<tr><th style='text-align:left'>{html.escape(name)}{note}</th>"
+                    f"<td style='text-align:left'>{_html(value)}</td></tr>")
+
+        rows = "".join(row(f.name, getattr(self, f.name)) for f in dataclasses.fields(self))  # type: ignore[arg-type]
+        rows += "".join(row(name, value, " <small>(derived)</small>") for name, value in self.derived().items())
         return f"<table><caption>{type(self).__name__}</caption>{rows}</table>"
 
 
@@ -108,6 +135,20 @@ def _pandas() -> Any:
     from ._extras import require
 
     return require("pandas", "to_frame()")
+
+
+def _scalar(value: Any) -> bool:
+    return isinstance(value, (bool, int, float, str, np.number)) or value is None
+
+
+def _properties(cls: type) -> list[str]:
+    """The public properties of ``cls`` and its bases, in the order they are defined."""
+    names: list[str] = []
+    for klass in reversed(cls.__mro__):
+        for name, attr in vars(klass).items():
+            if isinstance(attr, property) and not name.startswith("_") and name not in names:
+                names.append(name)
+    return names
 
 
 def _plain(value: Any) -> Any:

@@ -41,11 +41,51 @@ COMMANDS = {
 }
 
 
+#: How ``pendulab --help`` groups the commands; one not listed goes under "Tools".
+SECTIONS = {
+    "Coursework": ("period", "simulate", "estimate", "length", "gravity", "newton", "fit", "quadrature",
+                   "programs"),
+    "Beyond the coursework": ("approximations", "sweep"),
+    "Tools": ("report", "key", "serve"),
+}
+
+EXAMPLES = """\b
+Examples:
+  pendulab period -l 75cm -a 30deg          your pendulum's period
+  pendulab simulate --plot fig1.png         Figure 3's table and Figure 1
+  pendulab estimate --step 1e-2,1e-3,1e-4   problem 3(c)-(d)
+  pendulab report --students 262,407,634    the whole coursework, a PDF
+  pendulab serve                            the explorer at http://127.0.0.1:8000/
+  pendulab COMMAND --help                   a command's options and defaults
+
+Lengths take units (75cm), times too (10ms); amplitudes 0.785, pi/4, 4pi/5, 45deg.
+Every command but serve takes --json. Shell completion: see the user guide
+(eval "$(_PENDULAB_COMPLETE=bash_source pendulab)")."""
+
+
 class LazyGroup(click.Group):
     """A group that imports a subcommand's module only when it is needed."""
 
     def list_commands(self, ctx: click.Context) -> list[str]:
         return [name for name in COMMANDS if self._load(name) is not None]
+
+    def format_commands(self, ctx: click.Context, formatter: click.HelpFormatter) -> None:
+        """The commands by section, each with the first sentence of its help, whole."""
+        names = self.list_commands(ctx)
+        width = max(map(len, names), default=0)  # one column for every section
+        listed = {n for section in SECTIONS.values() for n in section}
+        for title, section in SECTIONS.items():
+            members = [n for n in section if n in names]
+            if title == "Tools":
+                members += [n for n in names if n not in listed]
+            rows = []
+            for name in members:
+                cmd = self._load(name)
+                if cmd is not None and not cmd.hidden:
+                    rows.append((name.ljust(width), cmd.get_short_help_str(limit=10_000)))
+            if rows:
+                with formatter.section(f"{title} commands"):
+                    formatter.write_dl(rows)
 
     def get_command(self, ctx: click.Context, name: str) -> click.Command | None:
         return self._load(name)
@@ -76,14 +116,13 @@ class LazyGroup(click.Group):
         return getattr(mod, attr, None)
 
 
-@click.group(cls=LazyGroup, context_settings={"help_option_names": ["-h", "--help"]})
+@click.group(cls=LazyGroup, context_settings={"help_option_names": ["-h", "--help"]}, epilog=EXAMPLES)
 @click.version_option(__version__, prog_name="pendulab")
 def cli() -> None:
     """pendulab: the nonlinear simple pendulum and the numerical methods taught with it.
 
-    Exact periods by the arithmetic-geometric mean, the coursework's Taylor
-    simulation, the period recovered from a simulation, and the report.
-    Every command takes --json for one machine-readable JSON document on stdout.
+    Periods by the arithmetic-geometric mean, the coursework's Taylor simulation, the
+    period recovered from a simulation, the coursework's five problems and its report.
     """
 
 
@@ -175,9 +214,9 @@ def _run(args: list[str], where: str) -> int:
         source_date_epoch(os.environ.get("SOURCE_DATE_EPOCH"))
         cli.main(args=args, prog_name="pendulab", standalone_mode=False)
         sys.stdout.flush()  # a full disk or a closed pipe found here, not at exit
-    except click.exceptions.NoArgsIsHelpError as exc:  # `pendulab` alone: the help, as click prints it
+    except click.exceptions.NoArgsIsHelpError as exc:  # `pendulab` alone: the help, a successful answer
         click.echo(exc.ctx.get_help())
-        return 2
+        return 0
     except click.exceptions.Exit as exc:
         return exc.exit_code
     except Stopped as exc:

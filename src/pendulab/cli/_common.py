@@ -90,6 +90,17 @@ FLOAT = Parsed(lambda s: float(inputs.real("value", s)), "number")
 POSITIVE_LIST = Parsed(lambda s: inputs.positive_list("value", s), "list")
 METHOD = Parsed(lambda s: inputs.method("method", s).name, "method")
 FIGURE = output(".png", ".svg", ".pdf")
+#: A length > 0 with an optional unit (``75cm``), in metres, kept exactly.
+LENGTH = Parsed(lambda s: inputs.length("length", s), "length")
+#: A time > 0 (a step, a period) with an optional unit (``10ms``), in seconds.
+DURATION = Parsed(lambda s: float(inputs.duration("value", s)), "time")
+#: A start or end time, any sign, with an optional unit (``2s``), in seconds.
+INSTANT = Parsed(lambda s: float(inputs.instant("value", s)), "time")
+#: Times > 0 separated by commas or spaces: ``1e-2,1e-3`` or ``10ms 1ms``.
+DURATION_LIST = Parsed(
+    lambda s: [float(x) for x in inputs.parse_list("value", s, inputs.duration,
+                                                   "a list of numbers > 0 such as 1e-2,1e-3 or 10ms,1ms")],
+    "list")
 
 
 def json_option(f: Callable) -> Callable:

@@ -10,9 +10,9 @@ import click
 from .. import inputs
 from ..errors import InputError
 from ._common import (
+    DURATION_LIST,
     FIGURE,
-    POSITIVE,
-    POSITIVE_LIST,
+    LENGTH,
     Parsed,
     check_plot_path,
     emit_json,
@@ -82,7 +82,7 @@ def approximations(plot, as_json):
     if plot:
         from ..plots.beyond import approximation_errors as draw
 
-        save_plot(lambda ax: draw(ax, fine), plot, (7.0, 4.6))
+        save_plot(lambda ax: draw(fine, ax), plot, (7.0, 4.6))
     if as_json:
         emit_json({
             "amplitudes_deg": list(TABLE_DEGREES),
@@ -111,12 +111,12 @@ def approximations(plot, as_json):
 @click.command()
 @click.option("-a", "--amplitude", "amplitudes", type=ANGLE_RANGE, default="1deg:179deg:1000", show_default=True,
               help="Amplitudes START:STOP:COUNT (both ends included), e.g. 1deg:179deg:1000.")
-@click.option("--step", "steps", type=POSITIVE_LIST, default="1e-3,1e-4", show_default=True,
+@click.option("--step", "steps", type=DURATION_LIST, default="1e-3,1e-4", show_default=True,
               help="Steps h, comma-separated.")
 @click.option("--method", "methods", type=METHOD_LIST, default="taylor2,rk4,verlet", show_default=True,
               help="Integrators, comma-separated: taylor2, rk4, verlet, taylor:P.")
-@click.option("-l", "--length", type=POSITIVE, default="1", show_default=True, help="Pendulum length l, m.")
-@click.option("--output", type=output(".csv", ".parquet"), help="Write every pendulum's row to this .csv or .parquet.")
+@click.option("-l", "--length", type=LENGTH, default="1", show_default=True, help="Pendulum length l, m: 1, 75cm.")
+@click.option("--output", "-o", type=output(".csv", ".parquet"), help="Write every pendulum's row to this .csv or .parquet.")
 @click.option("--plot", type=FIGURE, help="Write |period error| against amplitude to this PNG/SVG/PDF.")
 @click.option("--scheduler", type=SCHEDULER, metavar="ADDRESS", help="Run on this Dask scheduler (tcp://host:8786).")
 @g_option
@@ -143,7 +143,7 @@ def sweep(amplitudes, steps, methods, length, output, plot, scheduler, g, as_jso
     if plot:
         from ..plots.beyond import sweep_errors
 
-        save_plot(lambda ax: sweep_errors(ax, result), plot, (7.0, 4.6))
+        save_plot(lambda ax: sweep_errors(result, ax), plot, (7.0, 4.6))
     summary = result.summary()
     if as_json:
         emit_json({"length": float(length), "g": float(g), "amplitudes": len(amplitudes),

@@ -3,15 +3,16 @@ from __future__ import annotations
 
 import click
 
-from ..cases import EXAMPLE_GROUP, FIGURE3_STEP, FIGURE3_T_MAX, PROBLEM3_AMPLITUDE, PROBLEM3_STEPS
+from ..cases import EXAMPLE_GROUP, FIGURE3_STEP, FIGURE3_T_MAX, PROBLEM3_AMPLITUDE, PROBLEM3_STEPS, PROBLEM5
 from ._common import (
     ANGLE,
+    DURATION,
+    DURATION_LIST,
     EXACT_ANGLE,
     FIGURE,
-    FLOAT,
+    INSTANT,
+    LENGTH,
     METHOD,
-    POSITIVE,
-    POSITIVE_LIST,
     check_plot_path,
     emit_json,
     fmt,
@@ -21,7 +22,7 @@ from ._common import (
     save_plot,
 )
 
-_LENGTH_HELP = "Pendulum length l, m (> 0)."
+_LENGTH_HELP = "Pendulum length l, m (> 0): 2.08, 75cm, 750mm."
 _ANGLE_HELP = "Amplitude alpha in [0, pi): 0.785, pi/4, 4pi/5, 45deg, 45°."
 
 
@@ -37,8 +38,8 @@ def _method_option(f):
 
 
 @click.command()
-@click.option("-l", "--length", type=POSITIVE, required=True, help=_LENGTH_HELP)
-@click.option("-a", "--amplitude", type=EXACT_ANGLE, required=True,
+@click.option("-l", "--length", type=LENGTH, default=PROBLEM5.length.text, show_default=True, help=_LENGTH_HELP)
+@click.option("-a", "--amplitude", type=EXACT_ANGLE, default=PROBLEM5.amplitude.text, show_default=True,
               help=_ANGLE_HELP + " Taken exactly: 0.9999999999999999999999999pi is below pi.")
 @click.option("--iterations", type=integer(0, 1000), default=None,
               help="Fixed AGM iterations (7: the coursework's T^ of (8)); default: to convergence.")
@@ -101,11 +102,11 @@ def period(length, amplitude, iterations, digits, g, as_json):
 
 
 @click.command()
-@click.option("-l", "--length", type=POSITIVE, default="1", show_default=True, help=_LENGTH_HELP)
+@click.option("-l", "--length", type=LENGTH, default="1", show_default=True, help=_LENGTH_HELP)
 @click.option("-a", "--amplitude", type=ANGLE, default="pi/4", show_default=True, help=_ANGLE_HELP)
-@click.option("--step", type=POSITIVE, default=str(FIGURE3_STEP), show_default=True, help="Step h, s.")
-@click.option("--t-max", "t_max", type=FLOAT, default=str(FIGURE3_T_MAX), show_default=True, help="End time, s.")
-@click.option("--t0", type=FLOAT, default="0", show_default=True, help="Start time, s.")
+@click.option("--step", type=DURATION, default=str(FIGURE3_STEP), show_default=True, help="Step h, s (or 10ms).")
+@click.option("--t-max", "t_max", type=INSTANT, default=str(FIGURE3_T_MAX), show_default=True, help="End time, s.")
+@click.option("--t0", type=INSTANT, default="0", show_default=True, help="Start time, s.")
 @click.option("--digits", type=integer(1, 17), default="12", show_default=True,
               help="Significant digits in the table.")
 @click.option("--csv", "as_csv", is_flag=True, help="Print CSV (t,theta,omega) at full precision.")
@@ -126,9 +127,9 @@ def simulate(length, amplitude, step, t_max, t0, digits, as_csv, plot, phase, me
             check_plot_path(name, path)
     tr = run(float(length), float(amplitude), float(step), t_max, t0, float(g), method)
     if plot:
-        save_plot(lambda ax: _plots().time_series(ax, tr), plot)
+        save_plot(lambda ax: _plots().time_series(tr, ax), plot)
     if phase:
-        save_plot(lambda ax: _plots().phase_portrait(ax, tr), phase)
+        save_plot(lambda ax: _plots().phase_portrait(tr, ax), phase)
     if as_json:
         emit_json({"length": tr.length, "amplitude": tr.amplitude, "g": tr.g, "step": tr.step,
                    "method": method, "n_steps": tr.n_steps, "t": tr.t, "theta": tr.theta, "omega": tr.omega})
@@ -150,12 +151,12 @@ def _plots():
 
 
 @click.command()
-@click.option("-l", "--length", type=POSITIVE, default=None,
+@click.option("-l", "--length", type=LENGTH, default=None,
               help="Pendulum length l, m. Default: the example group's, 2.0800838231.")
 @click.option("-a", "--amplitude", type=ANGLE, default=PROBLEM3_AMPLITUDE.text, show_default=True, help=_ANGLE_HELP)
-@click.option("--step", "steps", type=POSITIVE_LIST, default=",".join(f"{s:g}" for s in PROBLEM3_STEPS),
+@click.option("--step", "steps", type=DURATION_LIST, default=",".join(f"{s:g}" for s in PROBLEM3_STEPS),
               show_default=True, help="Comma-separated steps h.")
-@click.option("--t-max", "t_max", type=FLOAT, default=None,
+@click.option("--t-max", "t_max", type=INSTANT, default=None,
               help="End of the simulation; default 1.5 T + 4h from the exact period (8).")
 @_method_option
 @click.option("--dense", is_flag=True,

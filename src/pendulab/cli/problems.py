@@ -9,10 +9,21 @@ from .. import cases, inputs
 from ..errors import InputError
 from ..period import FIXED_ITERATIONS_ULPS
 from ..words import sentence
-from ._common import ANGLE, FIGURE, POSITIVE, Parsed, check_plot_path, emit_json, fmt, g_option, json_option
+from ._common import (
+    ANGLE,
+    DURATION,
+    FIGURE,
+    LENGTH,
+    Parsed,
+    check_plot_path,
+    emit_json,
+    fmt,
+    g_option,
+    json_option,
+)
 
-_M = {"m": Fraction(1), "cm": Fraction(1, 100), "mm": Fraction(1, 1000)}
-_S = {"s": Fraction(1), "ms": Fraction(1, 1000)}
+_M = inputs.LENGTH_UNITS
+_S = inputs.TIME_UNITS
 
 
 def _quantity(units: dict[str, Fraction], default_unit: str, strict: bool) -> Parsed:
@@ -43,9 +54,7 @@ def _counts(text: str) -> list[int]:
     return ns
 
 
-LENGTH = _quantity(_M, "m", True)
 LENGTH_ERROR = _quantity(_M, "m", False)
-PERIOD = _quantity(_S, "s", True)
 PERIOD_ERROR = _quantity(_S, "s", False)
 #: A Newton start in (0, pi): 1, pi/3, 60deg.
 X0 = Parsed(lambda s: float(inputs.angle("x0", s, open_low=True)), "angle")
@@ -55,10 +64,11 @@ COUNTS = Parsed(_counts, "list")
 
 # --------------------------------------------------------------------------- gravity
 @click.command()
-@click.option("--length", type=LENGTH, default="115.2cm", show_default=True, help="Measured length l: 1.152, 1.152m, 115.2cm.")
+@click.option("-l", "--length", type=LENGTH, default="115.2cm", show_default=True,
+              help="Measured length l: 1.152, 1.152m, 115.2cm.")
 @click.option("--length-error", "length_error", type=LENGTH_ERROR, default="0.3cm", show_default=True,
               help="Absolute error bound of l (m, cm or mm; >= 0).")
-@click.option("--period", type=PERIOD, default="2.1536", show_default=True, help="Measured period T, s (> 0).")
+@click.option("--period", type=DURATION, default="2.1536", show_default=True, help="Measured period T, s (> 0).")
 @click.option("--period-error", "period_error", type=PERIOD_ERROR, default="2e-4", show_default=True,
               help="Absolute error bound of T, s (>= 0).")
 @json_option
@@ -66,7 +76,7 @@ def gravity(length, length_error, period, period_error, as_json):
     """Problem 1: g = 4 pi^2 l / T^2 and its propagated error; guaranteed significant digits."""
     from ..problems import problem1
 
-    r = problem1(length, length_error, period, period_error)
+    r = problem1(float(length), length_error, period, period_error)
     if as_json:
         emit_json({
             "length": r.length, "length_error": r.length_error, "period": r.period, "period_error": r.period_error,
@@ -87,8 +97,9 @@ def gravity(length, length_error, period, period_error, as_json):
 
 # --------------------------------------------------------------------------- newton
 @click.command()
-@click.option("--length", type=POSITIVE, default=str(cases.NEWTON_LENGTH), show_default=True, help="Pendulum length l, m.")
-@click.option("--target", type=POSITIVE, default=str(cases.NEWTON_TARGET), show_default=True,
+@click.option("-l", "--length", type=LENGTH, default=str(cases.NEWTON_LENGTH), show_default=True,
+              help="Pendulum length l, m: 0.5, 50cm.")
+@click.option("--target", type=DURATION, default=str(cases.NEWTON_TARGET), show_default=True,
               help="Target period of approximation (9), s.")
 @click.option("--x0", type=X0, default=None,
               help="Starting value in (0, pi): 1, pi/3, 60deg. Default: the end of the convergence interval "
@@ -141,11 +152,12 @@ def newton(length, target, x0, g, as_json):
 
 # --------------------------------------------------------------------------- fit
 @click.command()
-@click.option("-l", "--length", type=POSITIVE, default=cases.PROBLEM4.length.text, show_default=True, help="Pendulum length l, m.")
+@click.option("-l", "--length", type=LENGTH, default=cases.PROBLEM4.length.text, show_default=True,
+              help="Pendulum length l, m: 3.5, 350cm.")
 @click.option("-a", "--amplitude", type=ANGLE, default=cases.PROBLEM4.amplitude.text, show_default=True,
               help="Amplitude alpha in [0, pi): 0.785, pi/4, 45deg.")
-@click.option("--step", type=POSITIVE, default=str(cases.PROBLEM4_STEP), show_default=True, help="Taylor step h, s.")
-@click.option("--t-max", "t_max", type=POSITIVE, default=None, help="End of the data; default ceil(T) with T from (8).")
+@click.option("--step", type=DURATION, default=str(cases.PROBLEM4_STEP), show_default=True, help="Taylor step h, s (or 10ms).")
+@click.option("--t-max", "t_max", type=DURATION, default=None, help="End of the data; default ceil(T) with T from (8).")
 @click.option("--round", "decimals", type=ROUND, default=str(cases.PROBLEM4_ROUND), show_default=True,
               help="Round the normal equations half away from zero to this many decimals (0..15, or none).")
 @click.option("--plot", type=FIGURE, help="Write the data and the fitted phi to this PNG/SVG/PDF.")
@@ -164,7 +176,7 @@ def fit(length, amplitude, step, t_max, decimals, plot, g, as_json):
         from ..plots import problems as plots
         from ._common import save_plot
 
-        save_plot(lambda ax: plots.fit(ax, r), plot)
+        save_plot(lambda ax: plots.fit(r, ax), plot)
     answer = sentence("p4.answer." + ("yes" if r.below_tolerance else "no"), deviation=r.fit.max_deviation,
                       at=r.fit.argmax_deviation, tolerance=r.tolerance, exact=r.exact_deviation)
     if as_json:
@@ -211,7 +223,8 @@ def fit(length, amplitude, step, t_max, decimals, plot, g, as_json):
 
 # --------------------------------------------------------------------------- quadrature
 @click.command()
-@click.option("-l", "--length", type=POSITIVE, default=cases.PROBLEM5.length.text, show_default=True, help="Pendulum length l, m.")
+@click.option("-l", "--length", type=LENGTH, default=cases.PROBLEM5.length.text, show_default=True,
+              help="Pendulum length l, m: 3.5, 350cm.")
 @click.option("-a", "--amplitude", type=ANGLE, default=cases.PROBLEM5.amplitude.text, show_default=True,
               help="Amplitude alpha in [0, pi): 4pi/5, 144deg.")
 @click.option("--n", "ns", type=COUNTS, default=",".join(map(str, (1, *cases.PROBLEM5_N))), show_default=True,

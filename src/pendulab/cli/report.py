@@ -5,7 +5,7 @@ import click
 
 from .. import inputs
 from ..cases import EXAMPLE_GROUP
-from ._common import Parsed, choice, output
+from ._common import Parsed, choice, emit_json, json_option, output
 
 #: The example group as the option writes it: ``262,407,634``.
 EXAMPLE = ",".join(map(str, EXAMPLE_GROUP))
@@ -44,8 +44,13 @@ STUDENTS = Parsed(lambda s: s, "numbers")  # checked with the extra NUMBERS, in 
     help="The students' names for the cover, separated by ';', one per student number and in "
          "their order: --names \"Ana Sá; João Simões; Maria Luís\".",
 )
-def report(more: tuple[str, ...], students: str, lang: str, output: str, names: str | None) -> None:
-    """Write the coursework report: every question 1(a)-5(d) answered, at most 15 A4 pages."""
+@json_option
+def report(more: tuple[str, ...], students: str, lang: str, output: str, names: str | None, as_json: bool) -> None:
+    """Write the coursework report: every question 1(a)-5(d) answered, at most 15 A4 pages.
+
+    --json prints what it wrote (the file, its size, the group and its pendulum length)
+    and the answers the report states, as the answer key gives them for this group.
+    """
     from .._extras import require
     from ..group import group_length
 
@@ -59,5 +64,12 @@ def report(more: tuple[str, ...], students: str, lang: str, output: str, names: 
     numbers = inputs.students("students", ([students] if given or not more else []) + list(more))
     group_length(numbers)  # a sum with no non-zero digit fails here, before the work
     cover = None if names is None else inputs.names("names", names, len(numbers))
-    build_report(numbers, lang=lang, output=output, progress=True, names=cover)
+    written = build_report(numbers, lang=lang, output=output, progress=True, names=cover)
     click.echo(f"pendulab: wrote {output}", err=True)
+    if as_json:
+        from ..key import answer_key
+
+        answers = answer_key([numbers]).to_dict()
+        emit_json({"output": str(written), "bytes": written.stat().st_size, "lang": lang,
+                   "students": list(numbers), "length_text": group_length(numbers).text,
+                   "answers": {"group": answers["groups"][0], "common": answers["common"]}})

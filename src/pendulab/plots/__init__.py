@@ -1,17 +1,66 @@
-"""matplotlib renderings of computed results.
+"""matplotlib renderings of computed results: ``f(result, ax=None) -> Axes``.
 
-Each function takes an ``ax`` (``None``: a new :class:`matplotlib.figure.Figure` of its
-own), draws results already computed by the library, and returns the ``ax``. Nothing
-here computes a number or changes matplotlib's global state (no backend switch, no
-``rcParams`` edits: a caller who wants a style wraps the call in ``matplotlib.rc_context``).
+Each function draws a result already computed by the library on ``ax`` and returns it;
+without ``ax`` it draws on pyplot's current axes (a new figure in a notebook cell), as
+matplotlib's own functions do. Nothing here computes a number or changes matplotlib's
+settings (no backend switch, no ``rcParams`` edits: a caller who wants a style wraps the
+call in ``matplotlib.rc_context``). The CLI and the report pass the axes of a
+:class:`matplotlib.figure.Figure` of their own, so they never touch pyplot.
+
+The functions are importable from here: ``from pendulab.plots import time_series``.
 """
 from __future__ import annotations
 
+from importlib import import_module
+from typing import TYPE_CHECKING, Any
 
-def axes(ax=None):
-    """``ax``, or the axes of a new Figure (not registered with pyplot: no global state)."""
+if TYPE_CHECKING:
+    from matplotlib.axes import Axes
+
+    from .beyond import approximation_errors, sweep_errors
+    from .problems import fit, fit_residuals, newton_corrections, quadrature_convergence
+    from .simulation import phase_portrait, time_series
+
+__all__ = [
+    "approximation_errors",
+    "fit",
+    "fit_residuals",
+    "newton_corrections",
+    "phase_portrait",
+    "quadrature_convergence",
+    "sweep_errors",
+    "time_series",
+]
+
+# name -> submodule: loaded on first use, so ``import pendulab.plots`` imports nothing heavy.
+_WHERE = {
+    "approximation_errors": "beyond",
+    "sweep_errors": "beyond",
+    "fit": "problems",
+    "fit_residuals": "problems",
+    "newton_corrections": "problems",
+    "quadrature_convergence": "problems",
+    "phase_portrait": "simulation",
+    "time_series": "simulation",
+}
+
+
+def __getattr__(name: str) -> Any:
+    if name in _WHERE:
+        value = getattr(import_module(f"{__name__}.{_WHERE[name]}"), name)
+        globals()[name] = value
+        return value
+    raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
+
+
+def __dir__() -> list[str]:
+    return sorted(set(globals()) | set(__all__))
+
+
+def axes(ax: Axes | None = None) -> Axes:
+    """``ax``, or pyplot's current axes."""
     if ax is not None:
         return ax
-    from matplotlib.figure import Figure
+    import matplotlib.pyplot as plt
 
-    return Figure(layout="constrained").add_subplot()
+    return plt.gca()

@@ -1,15 +1,23 @@
 """Figures beyond the coursework: approximation errors and sweep errors."""
 from __future__ import annotations
 
+from typing import TYPE_CHECKING
+
 import numpy as np
 
 from . import axes
+
+if TYPE_CHECKING:
+    from matplotlib.axes import Axes
+
+    from ..approximations import ApproximationErrors
+    from ..sweep import SweepResult
 
 # Below this a relative error is rounding of double precision, not the formula: drawn at the floor.
 _FLOOR = 1e-17
 
 
-def approximation_errors(ax, table):
+def approximation_errors(table: ApproximationErrors, ax: Axes | None = None) -> Axes:
     """``|relative error|`` of each period formula against the amplitude (degrees), log scale.
 
     ``table`` is a :class:`pendulab.approximations.ApproximationErrors`. Returns ``ax``.
@@ -33,7 +41,7 @@ def approximation_errors(ax, table):
     return ax
 
 
-def sweep_errors(ax, result):
+def sweep_errors(result: SweepResult, ax: Axes | None = None) -> Axes:
     """``|cubic period error|`` against the amplitude, one line per (method, step).
 
     ``result`` is a :class:`pendulab.sweep.SweepResult`. Pendulums whose simulation did

@@ -4,16 +4,24 @@ The labels default to English; the report passes its catalogue's words.
 """
 from __future__ import annotations
 
+from typing import TYPE_CHECKING
+
 import numpy as np
 
 from . import axes
+
+if TYPE_CHECKING:
+    from matplotlib.axes import Axes
+
+    from ..problems import Problem2, Problem4, Problem5
 
 #: 5(d): the n^(-1/2) guide is drawn this factor above the first error, beside the data
 #: (which follow it exactly) rather than on top of them.
 GUIDE_OFFSET = 4.0
 
 
-def fit(ax, result, show_exact: bool = False, title: bool = True, labels: dict[str, str] | None = None):
+def fit(result: Problem4, ax: Axes | None = None, show_exact: bool = False, title: bool = True,
+        labels: dict[str, str] | None = None) -> Axes:
     """4(d)(i): every data point ``(t_j, z1_j)`` and the least-squares ``phi~`` on one plot.
 
     ``result`` is a :class:`pendulab.problems.Problem4`. Returns ``ax``.
@@ -42,11 +50,11 @@ def fit(ax, result, show_exact: bool = False, title: bool = True, labels: dict[s
     return ax
 
 
-def fit_residuals(ax, result):
+def fit_residuals(result: Problem4, ax: Axes | None = None) -> Axes:
     """The deviations ``z1_j - phi~(t_j)`` of problem 4 and the band ``+-tolerance`` of 4(d)(ii).
 
     The y axis is linear inside the band and logarithmic beyond (``symlog``): deviations
-    hundreds of times the tolerance and the band itself show on one plot. Returns ``ax``.
+    hundreds of times the tolerance and the band itself show on one plot. Returns the axes drawn on.
     """
     ax = axes(ax)
     tol = result.tolerance
@@ -62,7 +70,7 @@ def fit_residuals(ax, result):
     return ax
 
 
-def quadrature_convergence(ax, result, labels: dict[str, str] | None = None):
+def quadrature_convergence(result: Problem5, ax: Axes | None = None, labels: dict[str, str] | None = None) -> Axes:
     """5(d): ``|S_n - T^|`` against ``n`` on log-log axes, with an ``n^(-1/2)`` guide.
 
     The guide is drawn ``GUIDE_OFFSET`` times above the data, which follow it exactly.
@@ -90,7 +98,7 @@ def quadrature_convergence(ax, result, labels: dict[str, str] | None = None):
     return ax
 
 
-def newton_corrections(ax, result):
+def newton_corrections(result: Problem2, ax: Axes | None = None) -> Axes:
     """2(b): ``|x[k+1] - x[k]|`` against ``k`` (semilog): the exponent doubles each step.
 
     ``result`` is a :class:`pendulab.problems.Problem2`. Returns ``ax``.

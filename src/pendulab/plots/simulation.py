@@ -1,15 +1,22 @@
 """Figures 1 and 2 of the coursework: a simulation's time series and phase portrait."""
 from __future__ import annotations
 
+from typing import TYPE_CHECKING, Any
+
 import numpy as np
 
 from . import axes
 
+if TYPE_CHECKING:
+    from matplotlib.axes import Axes
 
-def time_series(ax, trajectory, title: bool = True, **style):
-    """Figure 1: the points ``(t_j, z1_j)`` of a simulation. Returns ``ax``."""
+    from ..taylor import Trajectory
+
+
+def time_series(trajectory: Trajectory, ax: Axes | None = None, title: bool = True, **style: Any) -> Axes:
+    """Figure 1: the points ``(t_j, z1_j)`` of a simulation. Returns the axes drawn on."""
     ax = axes(ax)
-    kw = {"marker": "o", "markersize": 3, "linestyle": "none", "color": "C0"} | style
+    kw: dict[str, Any] = {"marker": "o", "markersize": 3, "linestyle": "none", "color": "C0"} | style
     ax.plot(trajectory.t, trajectory.theta, **kw)
     ax.axhline(0, color="0.7", linewidth=0.6)
     ax.set_xlabel("t (s)")
@@ -22,12 +29,13 @@ def time_series(ax, trajectory, title: bool = True, **style):
     return ax
 
 
-def phase_portrait(ax, trajectory, max_arrows: int = 400, arrow_width: float = 0.006):
+def phase_portrait(trajectory: Trajectory, ax: Axes | None = None, max_arrows: int = 400,
+                   arrow_width: float = 0.006) -> Axes:
     """Figure 2: phase points ``Z_j = (z1_j, z2_j)`` joined by arrows, ``P = (alpha, 0)`` circled.
 
     Long trajectories are thinned to about ``max_arrows`` arrows. ``arrow_width`` is the
     shaft's width as a fraction of the axes' width; the heads scale with it, so a figure
-    printed a few centimetres wide keeps visible heads. Returns ``ax``.
+    printed a few centimetres wide keeps visible heads. Returns the axes drawn on.
     """
     ax = axes(ax)
     z1, z2 = trajectory.theta, trajectory.omega

@@ -188,8 +188,8 @@ def problem3(doc: Doc, students: Sequence[int]) -> None:
         doc.set(**{"p3b.left": num(ts[over], 6), "p3b.ratio": num(ts[over] / t_hat, 3)})
     t, z1, z2 = taylor.taylor(length, p3.ALPHA, h, t_max)
     plot = Trajectory(np.array(t), np.array(z1), np.array(z2), length, p3.ALPHA, G, h, 0.0)
-    doc.figure("p3b_time", lambda ax: time_series(ax, plot, title=False))
-    doc.figure("p3b_phase", lambda ax: phase_portrait(ax, plot))
+    doc.figure("p3b_time", lambda ax: time_series(plot, ax, title=False))
+    doc.figure("p3b_phase", lambda ax: phase_portrait(plot, ax))
 
     # 3(c): the period against the step.
     estimates = [p3.period(length, step, t_hat) for step in p3.STEPS]
@@ -305,8 +305,8 @@ def problem4(doc: Doc, students: Sequence[int]) -> None:
     doc.choose("p4d.ii", "yes" if main["maxdev"] < p4.TOL else "no")
     doc.choose("p4.alt", "yes" if other["maxdev"] < p4.TOL else "no")
     w = doc.catalogue
-    doc.figure("p4d_fit", lambda ax: fit(ax, r, title=False, labels={"data": w["p4.fig.data"], "fit": r"$\tilde\phi$"}))
-    doc.figure("p4d_residual", lambda ax: fit_residuals(ax, r))
+    doc.figure("p4d_fit", lambda ax: fit(r, ax, title=False, labels={"data": w["p4.fig.data"], "fit": r"$\tilde\phi$"}))
+    doc.figure("p4d_residual", lambda ax: fit_residuals(r, ax))
 
 
 # ----------------------------------------------------------------------------- problem 5
@@ -325,7 +325,7 @@ def problem5(doc: Doc, students: Sequence[int]) -> None:
         num(sub[n].substitution_estimate, 16), sci(sub[n].substitution_error, 2),
     ] for n, period, error, rate in table[1:]]
     w = doc.catalogue
-    doc.figure("p5d_conv", lambda ax: quadrature_convergence(ax, r, labels={
+    doc.figure("p5d_conv", lambda ax: quadrature_convergence(r, ax, labels={
         "plain": w["p5.fig.plain"], "sub": w["p5.fig.sub"], "x": "n", "y": w["p5.fig.error"]}),
         height=6.2 / 2.54)
     single, ten, last = table[0], table[1], table[-1]
