@@ -24,5 +24,12 @@ def test_docs_build_without_warnings(tmp_path):
     tutorial = (out / "tutorial.html").read_text()
     assert "Problem 5" in tutorial and "<img" in tutorial  # the notebook with its figures
     guide = (out / "guide.html").read_text()
-    assert "report.pdf for the built-in example group" in guide and 'id="install"' in guide  # the README
+    assert 'id="install"' in guide and "_PENDULAB_COMPLETE" in guide
+    coursework = (out / "coursework.html").read_text()
+    assert "b_{k+1} = \\sqrt{a_k b_k}" in coursework  # (7), so that "(7)" can be followed
     assert "one name per quantity" in (out / "glossary.html").read_text()
+    # Every page is in the table of contents (a page left out is a warning only for .rst).
+    index = (out / "index.html").read_text()
+    for page in sorted((ROOT / "docs").glob("*.md")):
+        if page.stem != "index":
+            assert f'href="{page.stem}.html"' in index, page.name
