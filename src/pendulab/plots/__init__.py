@@ -15,8 +15,6 @@ from importlib import import_module
 from typing import TYPE_CHECKING, Any
 
 if TYPE_CHECKING:
-    from matplotlib.axes import Axes
-
     from .beyond import approximation_errors, sweep_errors
     from .problems import fit, fit_residuals, newton_corrections, quadrature_convergence
     from .simulation import phase_portrait, time_series
@@ -55,12 +53,3 @@ def __getattr__(name: str) -> Any:
 
 def __dir__() -> list[str]:
     return sorted(set(globals()) | set(__all__))
-
-
-def axes(ax: Axes | None = None) -> Axes:
-    """``ax``, or pyplot's current axes."""
-    if ax is not None:
-        return ax
-    import matplotlib.pyplot as plt
-
-    return plt.gca()

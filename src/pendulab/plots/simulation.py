@@ -5,7 +5,7 @@ from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
-from . import axes
+from ._axes import axes
 
 if TYPE_CHECKING:
     from matplotlib.axes import Axes
