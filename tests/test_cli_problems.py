@@ -24,7 +24,8 @@ def test_gravity_json_and_units(cli):
             for s, e in (("1.152m", "0.003m"), ("1.152", "0.003"), ("1152mm", "3mm"))]
     assert all(d["g"] == data["g"] and d["abs_error"] == data["abs_error"] for d in same)
     out = cli("gravity").out
-    assert "significant digits guaranteed: 2" in out and "rule:" in out
+    assert "significant digits guaranteed: 2" in out and "rule: x~ has n significant digits when" in out
+    assert f"|e_g| <= (4 pi^2 / T^2) dl + (8 pi^2 l / T^3) dT  = {lib.abs_error:.6e} m/s^2" in out
 
 
 def test_newton_json(cli):
@@ -41,6 +42,15 @@ def test_newton_json(cli):
     assert start["x0"] == pytest.approx(math.radians(50)) and start["alpha"] == pytest.approx(z, abs=4e-15)
     text = cli("newton").out
     assert "k_max = 1" in text and "deg" in text
+    # The result carries codes and numbers; the CLI writes the words, with the numbers.
+    lib = problem2()
+    assert data["criterion"] == "rounding_level" and data["stop_reason"] == "small_correction"
+    assert "; stop when |x_(k+1) - x_k| <= 4 u (|x| + S/|f'(x)|): the correction is at the rounding level" in text
+    sign, *_, from_b = lib.interval.conditions
+    assert f"  [ok] sign change: f(a) = {sign.values['f_a']:.6e}, f(b) = {sign.values['f_b']:.6e}: f(a) f(b) < 0" in text
+    assert (f"  [ok] Newton step from b stays in [a, b]: |f(b)/f'(b)| = {from_b.values['step']:.6e} <= "
+            f"b - a = {from_b.values['width']:.6e}") in text
+    assert [c["name"] for c in data["interval_conditions"]] == [c.name for c in lib.interval.conditions]
 
 
 def test_fit_json_and_plot(cli, tmp_path):

@@ -67,7 +67,7 @@ def test_a_failing_interval_is_reported():
     chk = eq.check(math.radians(30), math.radians(60))
     assert not chk.holds
     failed = [c.name for c in chk.conditions if not c.holds]
-    assert failed == ["Newton step from a stays in [a, b]"]  # from 30 deg the step overshoots b
+    assert failed == ["step_from_a"]  # from 30 deg the step overshoots b
 
 
 def test_quotients_approach_the_asymptotic_constant():
@@ -149,3 +149,40 @@ def test_newton_plot_draws_the_corrections():
         assert list(line.get_ydata()) == [abs(d) for d in r.run.corrections if d != 0]
     finally:
         plt.close(fig)
+
+
+def test_results_carry_codes_and_their_numbers():
+    # A given tolerance: the run stops on the first correction at or below it.
+    run = newton(lambda x: x * x - 2, lambda x: 2 * x, 1.0, tol=1e-10)
+    assert (run.criterion, run.tol, run.stop_reason) == ("tolerance", 1e-10, "small_correction")
+    assert run.stop_limit == 1e-10 and run.stop_correction == abs(run.corrections[-1]) <= 1e-10
+    assert all(abs(c) > 1e-10 for c in run.corrections[:-1])
+    # The default: the rounding level of x.
+    run = newton(lambda x: x * x - 2, lambda x: 2 * x, 1.0)
+    assert (run.criterion, run.tol, run.stop_reason) == ("rounding_level", None, "small_correction")
+    assert run.stop_correction == abs(run.corrections[-1]) <= run.stop_limit
+    # A start on the root: f(x_0) = 0 exactly, no correction to report.
+    run = newton(lambda x: x - 2, lambda x: 1.0, 2.0)
+    assert (run.stop_reason, run.stop_correction, run.stop_limit, run.iterations) == ("zero_value", None, None, 0)
+
+
+def test_every_code_has_its_words_in_both_catalogues():
+    import typing
+
+    from pendulab import newton as nt
+    from pendulab.problems import TMaxRule
+    from pendulab.words import sentence
+
+    numbers = {"tol": 1e-3, "correction": 1e-9, "limit": 2e-9, "f_a": -1.0, "f_b": 1.0, "min": 0.1, "max": 0.2,
+               "step": 0.01, "width": 0.1, "relation": "<=", "t_hat": 3.9}
+    keys = ([f"p2.criterion.{c}" for c in typing.get_args(nt.Criterion)]
+            + [f"p2.stop.{c}" for c in typing.get_args(nt.StopReason)]
+            + [f"p2.condition.{c}" for c in typing.get_args(nt.ConditionName)]
+            + [f"p4.t_max.{c}" for c in typing.get_args(TMaxRule)]
+            + ["p1.rule", "p1.abs_error_formula", "p1.rel_error_formula"])
+    for lang in ("en", "pt"):
+        for key in keys:
+            assert sentence(key, lang, **numbers).strip(), (lang, key)
+    # check_interval names exactly the conditions the catalogue has words for.
+    chk = PeriodEquation(0.5, 1.5).interval()
+    assert [c.name for c in chk.conditions] == list(typing.get_args(nt.ConditionName))

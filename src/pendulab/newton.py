@@ -21,6 +21,7 @@ from __future__ import annotations
 import math
 from collections.abc import Callable
 from dataclasses import dataclass, field
+from typing import Literal
 
 import numpy as np
 
@@ -35,6 +36,14 @@ U = 2.0**-53
 Q_RTOL = 0.01
 
 Fn = Callable[[float], float]
+#: How a run stops (:attr:`NewtonResult.criterion`): at a given tolerance on the correction,
+#: or at the rounding level of ``x`` (``4 delta``, see :func:`rounding_level`).
+Criterion = Literal["tolerance", "rounding_level"]
+#: What stopped it (:attr:`NewtonResult.stop_reason`): ``f(x_k) = 0`` exactly, or a
+#: correction at or below the criterion's limit.
+StopReason = Literal["zero_value", "small_correction"]
+#: The sufficient conditions of :func:`check_interval`, in order (:attr:`Condition.name`).
+ConditionName = Literal["sign_change", "derivative_nonzero", "curvature_constant", "step_from_a", "step_from_b"]
 
 
 # --------------------------------------------------------------------------- iteration
@@ -50,10 +59,16 @@ class NewtonResult(Result):
         ``f(x_k)`` and ``f'(x_k)`` for ``k = 0 .. N``.
     corrections : tuple of float
         ``x[k+1] - x[k]``, ``k = 0 .. N-1``.
-    criterion : str
-        The stopping criterion, in words.
-    stop_reason : str
-        Which part of it stopped the run.
+    criterion : {"tolerance", "rounding_level"}
+        The stopping rule: ``|x[k+1] - x[k]| <= tol`` (``tol`` given) or ``<= 4 delta_k``, the
+        rounding level of ``x`` (:func:`rounding_level`), beyond which another step cannot
+        reduce the error.
+    tol : float or None
+        The tolerance given (``criterion == "tolerance"``).
+    stop_reason : {"zero_value", "small_correction"}
+        What stopped the run: ``f(x_N) = 0`` exactly, or ``|x_N - x_(N-1)| <= stop_limit``.
+    stop_correction, stop_limit : float or None
+        ``|x_N - x_(N-1)|`` and the limit it met (``stop_reason == "small_correction"``).
     rounding_level : float
         ``delta``: the rounding error of one iterate near the root,
         ``u (|x| + S / |f'(x)|)`` with ``S`` the size of the terms that make ``f``.
@@ -77,8 +92,11 @@ class NewtonResult(Result):
     values: tuple[float, ...]
     derivatives: tuple[float, ...]
     corrections: tuple[float, ...]
-    criterion: str
-    stop_reason: str
+    criterion: Criterion
+    tol: float | None
+    stop_reason: StopReason
+    stop_correction: float | None
+    stop_limit: float | None
     rounding_level: float
     q: tuple[float | None, ...]
     q_rounding: tuple[float, ...]
@@ -177,11 +195,12 @@ def newton(
         raise InputError("x0", x0, f"in the domain ({domain[0]:g}, {domain[1]:g})")
     xs, fs, dfs = [x], [f(x)], [df(x)]
     scale = f_scale
-    reason = ""
+    reason: StopReason | None = None
+    stop: tuple[float, float] | None = None
     for _ in range(max_iter):
         fx, dfx = fs[-1], dfs[-1]
         if fx == 0:
-            reason = "f(x_k) = 0 exactly"
+            reason = "zero_value"
             break
         if dfx == 0 or not math.isfinite(dfx):
             raise NumericalError(f"Newton's method: f'(x) = {dfx} at x = {x!r}; start closer to the root")
@@ -199,7 +218,7 @@ def newton(
         step = abs(x_new - x)
         x = x_new
         if step <= limit:
-            reason = f"|x_k - x_(k-1)| = {step:.3e} <= {limit:.3e}"
+            reason, stop = "small_correction", (step, limit)
             break
     else:
         raise NumericalError(f"Newton's method did not converge in {max_iter} steps from x0 = {x0!r}")
@@ -210,18 +229,17 @@ def newton(
     q_max = q[k_max] if k_max is not None else None
     c_est = const if const is not None else (q_max if q_max is not None else 0.0)
     last = abs(xs[-1] - xs[-2]) if len(xs) > 1 else 0.0
-    criterion = (
-        f"stop when |x_(k+1) - x_k| <= {tol:.3e}" if tol is not None else
-        "stop when |x_(k+1) - x_k| <= 4 u (|x| + S/|f'(x)|): the correction is at the rounding "
-        "level of x, so another step cannot reduce the error"
-    )
+    assert reason is not None  # the loop ends by break or raises
     return NewtonResult(
         iterates=tuple(xs),
         values=tuple(fs),
         derivatives=tuple(dfs),
         corrections=tuple(b - a for a, b in zip(xs, xs[1:])),
-        criterion=criterion,
+        criterion="tolerance" if tol is not None else "rounding_level",
+        tol=tol,
         stop_reason=reason,
+        stop_correction=None if stop is None else stop[0],
+        stop_limit=None if stop is None else stop[1],
         rounding_level=delta,
         q=tuple(q),
         q_rounding=tuple(rho),
@@ -234,11 +252,15 @@ def newton(
 # --------------------------------------------------------------------------- interval
 @dataclass(frozen=True, eq=False)
 class Condition(Result):
-    """One sufficient condition, whether it holds, and the numbers that show it."""
+    """One sufficient condition, whether it holds, and the numbers that show it.
 
-    name: str
+    ``name`` says which (:data:`ConditionName`); ``values`` holds its numbers: ``f_a``,
+    ``f_b`` (sign change); ``min``, ``max`` of ``f'`` or ``f''`` on the grid; ``step``
+    (``|f(a)/f'(a)|`` or ``|f(b)/f'(b)|``) and ``width`` (``b - a``).
+    """
+
+    name: ConditionName
     holds: bool
-    detail: str
     values: dict = field(default_factory=dict)
 
 
@@ -289,31 +311,13 @@ def check_interval(f: Fn, df: Fn, d2f: Fn, a: float, b: float, samples: int = 20
     step_b = abs(fb / dfb) if dfb else math.inf
     width = b - a
     conds = (
-        Condition(
-            "sign change", fa * fb < 0,
-            f"f(a) = {fa:.6e}, f(b) = {fb:.6e}: f(a) f(b) {'<' if fa * fb < 0 else '>='} 0",
-            {"f_a": fa, "f_b": fb},
-        ),
-        Condition(
-            "f' has no zero", bool(np.all(d1 > 0) or np.all(d1 < 0)),
-            f"f' in [{d1.min():.6e}, {d1.max():.6e}] on [a, b]",
-            {"min": float(d1.min()), "max": float(d1.max())},
-        ),
-        Condition(
-            "f'' of constant sign", bool(np.all(d2 >= 0) or np.all(d2 <= 0)),
-            f"f'' in [{d2.min():.6e}, {d2.max():.6e}] on [a, b]",
-            {"min": float(d2.min()), "max": float(d2.max())},
-        ),
-        Condition(
-            "Newton step from a stays in [a, b]", step_a <= width,
-            f"|f(a)/f'(a)| = {step_a:.6e} {'<=' if step_a <= width else '>'} b - a = {width:.6e}",
-            {"step": step_a, "width": width},
-        ),
-        Condition(
-            "Newton step from b stays in [a, b]", step_b <= width,
-            f"|f(b)/f'(b)| = {step_b:.6e} {'<=' if step_b <= width else '>'} b - a = {width:.6e}",
-            {"step": step_b, "width": width},
-        ),
+        Condition("sign_change", fa * fb < 0, {"f_a": fa, "f_b": fb}),
+        Condition("derivative_nonzero", bool(np.all(d1 > 0) or np.all(d1 < 0)),
+                  {"min": float(d1.min()), "max": float(d1.max())}),
+        Condition("curvature_constant", bool(np.all(d2 >= 0) or np.all(d2 <= 0)),
+                  {"min": float(d2.min()), "max": float(d2.max())}),
+        Condition("step_from_a", step_a <= width, {"step": step_a, "width": width}),
+        Condition("step_from_b", step_b <= width, {"step": step_b, "width": width}),
     )
     return IntervalCheck(a, b, conds, len(grid))
 

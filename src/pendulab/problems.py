@@ -8,7 +8,7 @@ from __future__ import annotations
 import math
 from collections.abc import Sequence
 from dataclasses import dataclass
-from typing import TYPE_CHECKING
+from typing import TYPE_CHECKING, Literal
 
 from . import cases
 from .crossing import PeriodEstimate, estimate_period, observed_orders
@@ -331,6 +331,10 @@ PROBLEM4_FINE = 20
 PROBLEM4_MAX_STEPS = 100_000
 
 
+#: Where problem 4's ``t_max`` came from: ``ceil(T^)`` (the default) or the caller.
+TMaxRule = Literal["ceil_t_hat", "given"]
+
+
 @dataclass(frozen=True, eq=False)
 class Problem4(Result):
     """Problem 4: least-squares fit of the Taylor data by (10).
@@ -344,13 +348,12 @@ class Problem4(Result):
     t_max : float
         ``ceil(T^)`` (4 for ``l = 3.5``: 401 points, not the original's ``Y_0 .. Y_600``)
         unless given.
-    t_max_rule : str
+    t_max_rule : {"ceil_t_hat", "given"}
+        Where ``t_max`` came from.
     data : Trajectory
         4(a): the points ``Y_j = (t_j, z1_j)``.
     last_points : ndarray, shape (10, 2)
         4(a): the last 10 data points.
-    objective : str
-        4(b): the function minimised.
     fit : LeastSquaresFit
         4(c)-(d): normal equations (rounded), the SPD proof, coefficients, deviations.
     tolerance : float
@@ -371,10 +374,9 @@ class Problem4(Result):
     step: float
     t_hat: float
     t_max: float
-    t_max_rule: str
+    t_max_rule: TMaxRule
     data: Trajectory
     last_points: np.ndarray
-    objective: str
     fit: LeastSquaresFit
     tolerance: float
     below_tolerance: bool
@@ -407,14 +409,13 @@ def problem4(
     """
     import numpy as np
 
-    from .lsq import TRIG_BASIS, TRIG_LABELS, evaluate, least_squares
+    from .lsq import TRIG_BASIS, evaluate, least_squares
     from .motion import exact_motion
 
     t_hat = agm_period(length, amplitude, g, iterations=7)
+    rule: TMaxRule = "ceil_t_hat" if t_max is None else "given"
     if t_max is None:
-        t_max, rule = float(math.ceil(t_hat)), f"ceil(T^) = ceil({t_hat:.6f})"
-    else:
-        rule = "given"
+        t_max = float(math.ceil(t_hat))
     from . import _validate as v
     from .errors import InputError
 
@@ -441,8 +442,6 @@ def problem4(
             f"g/l = {data.g / data.length:.3g} 1/s^2; use h well below sqrt(l/g) = {(data.length / data.g) ** 0.5:.3g} s"
         )
     fit = least_squares(data.t, data.theta, decimals=decimals)
-    terms = " + ".join(f"{n} {lab}" if lab != "1" else n for n, lab in zip(fit.names, TRIG_LABELS))
-    objective = f"E({', '.join(fit.names)}) = sum_(j=0)^({len(data.t) - 1}) (z1_j - ({terms})|_(t=t_j))^2"
     fine = np.linspace(data.t[0], data.t[-1], PROBLEM4_FINE * (len(data.t) - 1) + 1)
     curve_phi = evaluate(fit.coefficients, TRIG_BASIS, fine)
     curve_exact = exact_motion(length, amplitude, fine, g).theta
@@ -459,7 +458,6 @@ def problem4(
         t_max_rule=rule,
         data=data,
         last_points=data.time_series()[-10:],
-        objective=objective,
         fit=fit,
         tolerance=PROBLEM4_TOLERANCE,
         below_tolerance=below,

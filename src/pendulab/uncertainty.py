@@ -32,14 +32,6 @@ from . import _validate as v
 from .errors import InputError
 from .results import Result
 
-#: The rule used for significant digits, as stated in the output.
-DIGITS_RULE = (
-    "x~ has n significant digits when |x - x~| <= 0.5 * 10^(k - n + 1), "
-    "10^k the place value of the leading digit of x~ (half a unit in the n-th significant digit)"
-)
-#: Problem 1(a), first-order propagated errors.
-ABS_ERROR_FORMULA = "|e_g| <= (4 pi^2 / T^2) dl + (8 pi^2 l / T^3) dT"
-REL_ERROR_FORMULA = "|e_g| / g <= dl / l + 2 dT / T"
 #: Never claim more digits than a double carries.
 MAX_DIGITS = 15
 
@@ -146,11 +138,9 @@ class GravityEstimate(Result):
     error_bound : float
         ``max(abs_error, worst_error)``: the bound used to count digits.
     significant_digits : int
-        Digits guaranteed by ``error_bound`` under :data:`DIGITS_RULE` (1(b)).
+        Digits guaranteed by ``error_bound`` under the half-unit rule of the module (1(b)).
     g_text : str
         ``g`` rounded half away from zero to those digits.
-    rule : str
-        :data:`DIGITS_RULE`.
     """
 
     length: float
@@ -168,9 +158,6 @@ class GravityEstimate(Result):
     error_bound: float
     significant_digits: int
     g_text: str
-    rule: str = DIGITS_RULE
-    abs_error_formula: str = ABS_ERROR_FORMULA
-    rel_error_formula: str = REL_ERROR_FORMULA
 
 
 def gravity_estimate(length: float, length_error: float, period: float, period_error: float) -> GravityEstimate:
@@ -213,8 +200,9 @@ def gravity_estimate(length: float, length_error: float, period: float, period_e
     except (OverflowError, ZeroDivisionError):  # T**3 beyond the doubles, or T**2 below them
         finite = False
     if not finite:
-        # Blame the input further, in decades, from a laboratory pendulum (1 m, 2 s).
-        name, value = ("period", period) if abs(math.log10(period / 2)) >= abs(math.log10(length)) else ("length", length)
+        # Blame the input less like a laboratory pendulum's (1 m, 2 s).
+        name = v.furthest(("period", period, 2.0), ("length", length, 1.0))
+        value = period if name == "period" else length
         raise InputError(name, value, "such that g = 4 pi^2 l/T^2 and its error bounds are finite, "
                          "non-zero doubles (T^3 and l/T^2 within 1e-308..1e308)")
     n = significant_digits(g, bound)

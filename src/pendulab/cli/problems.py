@@ -7,6 +7,7 @@ import click
 
 from .. import cases, inputs
 from ..errors import InputError
+from ..newton import Condition
 from ..period import FIXED_ITERATIONS_ULPS
 from ..words import sentence
 from ._common import (
@@ -77,22 +78,23 @@ def gravity(length, length_error, period, period_error, as_json):
     from ..problems import problem1
 
     r = problem1(float(length), length_error, period, period_error)
+    rule, abs_formula, rel_formula = (sentence(f"p1.{k}") for k in ("rule", "abs_error_formula", "rel_error_formula"))
     if as_json:
         emit_json({
             "length": r.length, "length_error": r.length_error, "period": r.period, "period_error": r.period_error,
             "g": r.g, "abs_error": r.abs_error, "rel_error": r.rel_error, "dg_dl": r.dg_dl, "dg_dT": r.dg_dT,
             "g_min": r.g_min, "g_max": r.g_max, "worst_error": r.worst_error, "error_bound": r.error_bound,
-            "significant_digits": r.significant_digits, "g_rounded": r.g_text, "rule": r.rule,
-            "abs_error_formula": r.abs_error_formula, "rel_error_formula": r.rel_error_formula,
+            "significant_digits": r.significant_digits, "g_rounded": r.g_text, "rule": rule,
+            "abs_error_formula": abs_formula, "rel_error_formula": rel_formula,
         })
         return
     click.echo(f"l = {r.length!r} +- {r.length_error!r} m,  T = {r.period!r} +- {r.period_error!r} s")
     click.echo(f"g = 4 pi^2 l / T^2          = {r.g!r} m/s^2")
-    click.echo(f"absolute error (1st order)  {r.abs_error_formula}  = {r.abs_error:.6e} m/s^2")
-    click.echo(f"relative error (1st order)  {r.rel_error_formula}  = {r.rel_error:.6e}")
+    click.echo(f"absolute error (1st order)  {abs_formula}  = {r.abs_error:.6e} m/s^2")
+    click.echo(f"relative error (1st order)  {rel_formula}  = {r.rel_error:.6e}")
     click.echo(f"exact range over the box    [{r.g_min!r}, {r.g_max!r}]  (worst error {r.worst_error:.6e})")
     click.echo(f"significant digits guaranteed: {r.significant_digits}  (g = {r.g_text} m/s^2, error <= {r.error_bound:.3e})")
-    click.echo(f"rule: {r.rule}")
+    click.echo(f"rule: {rule}")
 
 
 # --------------------------------------------------------------------------- newton
@@ -120,12 +122,13 @@ def newton(length, target, x0, g, as_json):
             "alpha": r.alpha, "alpha_degrees": r.alpha_degrees, "closed_form": r.closed_form,
             "x0": r.x0, "x0_rule": x0_rule, "x0_in_interval": r.x0_in_interval,
             "iterates": list(run.iterates), "values": list(run.values), "corrections": list(run.corrections),
-            "criterion": run.criterion, "stop_reason": run.stop_reason,
+            "criterion": run.criterion, "tol": run.tol, "stop_reason": run.stop_reason,
+            "stop_correction": run.stop_correction, "stop_limit": run.stop_limit,
             "q": list(run.q), "q_rounding": list(run.q_rounding), "k_max": run.k_max, "q_kmax": run.q_kmax,
             "asymptotic_constant": run.asymptotic_constant, "ratios": list(r.ratios),
             "rounding_level": run.rounding_level, "error_estimate": run.error_estimate,
             "interval": [chk.a, chk.b], "interval_degrees": list(r.interval_degrees),
-            "interval_conditions": [{"name": c.name, "holds": c.holds, "detail": c.detail, **c.values}
+            "interval_conditions": [{"name": c.name, "holds": c.holds, "detail": condition_text(c), **c.values}
                                     for c in chk.conditions],
             "justification": justification,
         })
@@ -135,8 +138,8 @@ def newton(length, target, x0, g, as_json):
     a, b = r.interval_degrees
     click.echo(f"interval [a, b] = [{a:g}, {b:g}] deg = [{chk.a!r}, {chk.b!r}] rad:")
     for c in chk.conditions:
-        click.echo(f"  [{'ok' if c.holds else 'FAILS'}] {c.name}: {c.detail}")
-    click.echo(f"x0 = {r.x0!r} ({x0_rule}); {run.criterion}")
+        click.echo(f"  [{'ok' if c.holds else 'FAILS'}] {condition_text(c)}")
+    click.echo(f"x0 = {r.x0!r} ({x0_rule}); {sentence('p2.criterion.' + run.criterion, tol=run.tol)}")
     click.echo(f"{'k':>3} {'x_k (rad)':>22} {'f(x_k)':>12} {'q_k':>12} {'rounding of q_k':>16}")
     for k, x in enumerate(run.iterates):
         q = run.q[k] if k < len(run.q) else None
@@ -148,6 +151,13 @@ def newton(length, target, x0, g, as_json):
     q_kmax = f"{run.q_kmax:.6g}" if run.q_kmax is not None else "none (no q_k free of rounding)"
     click.echo(f"asymptotic constant |f''(z)/(2 f'(z))| = {run.asymptotic_constant:.6g}; q_kmax = {q_kmax}")
     click.echo(f"alpha = {r.alpha!r} rad = {r.alpha_degrees!r} deg  (error estimate {run.error_estimate:.1e} rad)")
+
+
+def condition_text(c: Condition) -> str:
+    """One sufficient condition of 2(a), named, with its numbers (the catalogue's ``p2.condition.*``)."""
+    relation = {"sign_change": ("<", ">="), "step_from_a": ("<=", ">"), "step_from_b": ("<=", ">")}
+    pair = relation.get(c.name, ("", ""))
+    return sentence(f"p2.condition.{c.name}", relation=pair[0] if c.holds else pair[1], **c.values)
 
 
 # --------------------------------------------------------------------------- fit
@@ -165,6 +175,7 @@ def newton(length, target, x0, g, as_json):
 @json_option
 def fit(length, amplitude, step, t_max, decimals, plot, g, as_json):
     """Problem 4: least-squares fit of the Taylor data by basis (10), via the normal equations."""
+    from ..lsq import TRIG_LABELS
     from ..problems import problem4
 
     if plot:
@@ -198,11 +209,12 @@ def fit(length, amplitude, step, t_max, decimals, plot, g, as_json):
         })
         return
     click.echo(f"l = {r.length!r}, alpha = {r.amplitude!r}, h = {r.step!r}; T^ (8) = {r.t_hat!r}; "
-               f"t_max = {r.t_max:g} ({r.t_max_rule}); {r.points} points")
+               f"t_max = {r.t_max:g} ({sentence('p4.t_max.' + r.t_max_rule, t_hat=r.t_hat)}); {r.points} points")
     click.echo("last 10 points (t_j, z1_j):")
     for t, y in r.last_points.tolist():
         click.echo(f"  {t:>8.4g} {y:>20.12f}")
-    click.echo(f"minimise {r.objective}")
+    terms = " + ".join(f"{n} {lab}" if lab != "1" else n for n, lab in zip(f.names, TRIG_LABELS))
+    click.echo(f"minimise E({', '.join(f.names)}) = sum_(j=0)^({r.points - 1}) (z1_j - ({terms})|_(t=t_j))^2")
     how = "not rounded" if f.decimals is None else f"rounded half away from zero to {f.decimals} decimals"
     click.echo(f"normal equations A c = r ({how}):")
     w = max(len(f"{x:.{f.decimals if f.decimals is not None else 10}f}") for x in f.normal_matrix.ravel()) + 1
