@@ -368,7 +368,7 @@ def test_a_scheduler_port_that_is_not_dask_is_one_line(cli, monkeypatch, reply):
 def test_a_list_of_tiny_steps_is_refused_before_the_work(cli):
     """800 items of 4e-9 s (about 10 hours): one line at once."""
     res = cli("estimate", "-a", "1", "--step", ",".join(["4e-9"] * 800))
-    assert_one_line_error(res, "--step", "steps that need at most")
+    assert_one_line_error(res, "--step", "must be larger or fewer steps (at most", "in all; these need")
 
 
 def test_limits_weigh_steps_by_the_methods_cost(cli):

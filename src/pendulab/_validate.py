@@ -2,8 +2,10 @@
 from __future__ import annotations
 
 import math
+from decimal import ROUND_CEILING, ROUND_FLOOR, Decimal
 from typing import Any
 
+from .cases import G
 from .errors import InputError
 from .methods import cost_per_step, resolve
 
@@ -110,6 +112,51 @@ def time_span(t0: Any, t_max: Any, step: Any) -> tuple[float, float, float]:
     return t0, t_max, step
 
 
+def too_much_work(name: str, value: Any, bound: str, most: float, need: float, what: str = "steps", *,
+                  in_all: bool = False, hint: str = "", mentions: tuple[str, ...] = (),
+                  alternative: InputError | None = None) -> InputError:
+    """The one refusal of a run that would take more than ``most`` steps (or rows, or points).
+
+    It reads ``NAME = VALUE is not allowed: must be BOUND (at most MOST WHAT [in all]; these
+    need NEED[; HINT])``: the argument, its value, the range it must be in and the numbers
+    that decide it. ``what`` names the unit, with the method where its cost weighs the
+    limit (:func:`steps_of`).
+    """
+    tail = f"; {hint}" if hint else ""
+    return InputError(name, value, f"{bound} (at most {most:.3g} {what}{' in all' if in_all else ''}; "
+                                   f"these need {need:.3g}{tail})", mentions=mentions, alternative=alternative)
+
+
+def bound_text(x: float, up: bool, digits: int = 3) -> str:
+    """``x`` to ``digits`` significant digits, rounded away from the refused side.
+
+    A lower bound is rounded up and an upper bound down, so that a value written as the
+    message shows it is accepted (``t_max/1e6 = 0.119001`` shows as ``0.12``, not ``0.119``).
+    """
+    if not (math.isfinite(x) and x > 0):
+        return f"{x:.{digits}g}"
+    d = Decimal(x)
+    q = d.quantize(Decimal(1).scaleb(d.adjusted() - digits + 1), rounding=ROUND_CEILING if up else ROUND_FLOOR)
+    return f"{float(q):.{digits}g}"
+
+
+def steps_of(method: Any) -> str:
+    """``steps``, or ``steps of METHOD`` where a limit stated in steps of (3) is weighed by the method's cost."""
+    m = resolve(method)
+    return "steps" if m.name == "taylor2" else f"steps of {m.name}"
+
+
+def furthest(*candidates: tuple[str, float, float]) -> str:
+    """The name, of ``(name, value, ordinary)`` triples, whose value is furthest in decades from its ordinary one.
+
+    A limit that two inputs share (the period ``2 pi sqrt(l/g)``, the steps ``t_max / h``)
+    blames the one that looks least like an ordinary case: ``|log10(value / ordinary)|``
+    largest, the first on a tie. Computed as a difference of logarithms, so a quotient
+    that over- or underflows (``5e-324 / 2``) still compares. Values must be > 0.
+    """
+    return max(candidates, key=lambda c: abs(math.log10(c[1]) - math.log10(c[2])))[0]
+
+
 def steps_within(name: str, t0: float, t_max: float, step: float, limit: int, what: str = "steps") -> int:
     """``N = Round((t_max - t0)/h)`` of (6), refused by arithmetic when it exceeds ``limit``.
 
@@ -123,18 +170,19 @@ def steps_within(name: str, t0: float, t_max: float, step: float, limit: int, wh
     return int(round(q))
 
 
-def step_limit(name: str, step: float, t0: float, t_max: float, limit: int, what: str = "steps") -> InputError:
+def step_limit(name: str, step: float, t0: float, t_max: float, limit: int, what: str = "steps",
+               need: float | None = None, hint: str = "or a shorter t_max") -> InputError:
     """At most ``limit`` ``what`` of ``step`` over ``[t0, t_max]``: an error blaming ``name``
     (the step), with the same limit for ``t_max`` as its alternative; each hint names the
     other argument."""
     span = _span(t0)
     over = span if t0 == 0 else f"({span})"
-    at_most = f"at most {limit:.0e} {what}"
-    return InputError(
-        name, step, f">= {over}/{limit:.0e} = {(t_max - t0) / limit:.3g} s ({at_most}; or a shorter t_max)",
-        mentions=("t_max", "t0"),
-        alternative=InputError("t_max", t_max, f"<= {t0 + limit * step:.4g} s ({at_most} with {name} = {step:g} s; "
-                                               f"or a larger {name})", mentions=(name,)),
+    need = (t_max - t0) / step if need is None else need
+    return too_much_work(
+        name, step, f">= {over}/{limit:.3g} = {bound_text((t_max - t0) / limit, True)} s", limit, need, what,
+        hint=hint, mentions=("t_max", "t0"),
+        alternative=too_much_work("t_max", t_max, f"<= {bound_text(t0 + limit * step, False, 4)} s with {name} = {step:g} s",
+                                  limit, need, what, hint=f"or a larger {name}", mentions=(name,)),
     )
 
 
@@ -149,10 +197,9 @@ def work_within(name: str, value: Any, steps: float, method: Any, budget: float)
     naming ``name`` and ``value`` where they cost more than ``budget`` steps of (3)."""
     m = resolve(method)
     if not steps * cost_per_step(m) <= budget:  # also catches inf and NaN
-        allowed = steps_for(m, budget)
-        of = "" if m.name == "taylor2" else f" of {m.name} ({cost_per_step(m):.3g}x the cost of a step of taylor2)"
-        raise InputError(name, value, f"steps that need at most {allowed:.3g} steps{of} in all "
-                                      f"(these need {steps:.3g}); use larger or fewer steps")
+        cost = "" if m.name == "taylor2" else f"a step of {m.name} costs {cost_per_step(m):.3g} of taylor2"
+        raise too_much_work(name, value, "larger or fewer steps", steps_for(m, budget), steps, steps_of(m),
+                            in_all=True, hint=cost)
     return steps
 
 
@@ -172,9 +219,8 @@ def period_scale(length: float, g: float) -> float:
     """``2 pi sqrt(l/g)``, refused naming ``length`` or ``g`` beyond :data:`MAX_PERIOD`."""
     t0 = 2 * math.pi * sqrt_ratio(length, g)
     if not t0 <= MAX_PERIOD:
-        # Blame the input further from an ordinary pendulum (1 m, 9.81 m/s^2) in decades.
         q = MAX_PERIOD / (2 * math.pi)  # products, not q**2: a float product overflows to inf, ** raises
-        if abs(math.log10(length)) >= abs(math.log10(g / 9.80665)):
+        if furthest(("length", length, 1.0), ("g", g, G)) == "length":  # from an ordinary pendulum
             limit = q * (q * g)
             raise InputError("length", length, f"<= {limit:.3g} m for g = {g:g} (period 2 pi sqrt(l/g) <= {MAX_PERIOD:g} s)")
         limit = length / q / q

@@ -147,7 +147,7 @@ def estimate_period(
         t_max = default_t_max(exact, step, t0)
     t0, t_max, step = v.time_span(t0, t_max, step)
     m = resolve(method)
-    n = v.steps_within("step", t0, t_max, step, v.steps_for(m, MAX_STEPS), _of(m))
+    n = v.steps_within("step", t0, t_max, step, v.steps_for(m, MAX_STEPS), v.steps_of(m))
     from ._kernels import first_return_pieces
 
     c = -g / length
@@ -202,11 +202,6 @@ def estimate_period(
         window_omega=z2w.copy(),
         dense=float(dense),
     )
-
-
-def _of(m) -> str:
-    """``steps``, named with the method where its limit is weighed by its cost."""
-    return "steps" if m.name == "taylor2" else f"steps of {m.name}"
 
 
 def observed_orders(steps: list[float], errors: list[float]) -> list[float | None]:

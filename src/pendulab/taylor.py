@@ -137,10 +137,11 @@ def simulate(
     stride = v.integer("stride", stride, 1)
     # Work and memory by arithmetic, before anything is allocated.
     limit = v.steps_for(method, MAX_STEPS)  # weighed by the method's cost
-    n = v.steps_within("step", t0, t_max, step, limit, "steps" if limit == MAX_STEPS else f"steps of {method}")
+    n = v.steps_within("step", t0, t_max, step, limit, v.steps_of(method))
     kept = n // stride + 1 + (n % stride != 0)
     if kept > MAX_POINTS:
-        raise v.step_limit("step", step, t0, t_max, MAX_POINTS - 1, "points kept (or a stride)")
+        raise v.step_limit("step", step, t0, t_max, MAX_POINTS - 1, "points kept", kept - 1,
+                           "or a shorter t_max, or a stride")
     index = np.arange(0, n + 1, stride)
     if index[-1] != n:
         index = np.append(index, n)

@@ -86,14 +86,12 @@ def _check_work(alpha: np.ndarray, length: np.ndarray, g: float, steps: list[flo
     for h in steps:
         n = default_t_max(longest, h) / h
         if not n <= most:
-            of = "" if most == MAX_STEPS else f" of {worst}"
-            raise InputError("step", h, f">= {default_t_max(longest, h) / most:.3g} s: the longest period "
-                             f"({longest:.4g} s) needs 1.5 T / h steps, at most {most:.0e}{of}")
+            raise v.too_much_work("step", h, f">= {v.bound_text(default_t_max(longest, h) / most, True)} s", most, n,
+                                  v.steps_of(worst), hint=f"the longest period ({longest:.4g} s) needs 1.5 T / h steps")
         total += cost * (1.5 * total_time + 4 * h * len(periods)) / h
     if not total <= MAX_TOTAL_STEPS:
-        raise InputError("step", min(steps), f"such that the sweep runs at most {MAX_TOTAL_STEPS:.0e} steps of "
-                         f"taylor2 in all, other methods' steps weighed by their cost (these need {total:.3g}); "
-                         "use larger steps, or fewer amplitudes or methods")
+        raise v.too_much_work("step", min(steps), "larger", MAX_TOTAL_STEPS, total, "steps of taylor2", in_all=True,
+                              hint="other methods' steps weighed by their cost; or fewer amplitudes or methods")
 
 
 def sweep(

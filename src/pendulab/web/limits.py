@@ -7,11 +7,10 @@ raises :class:`pendulab.errors.InputError` naming the field to change.
 """
 from __future__ import annotations
 
-import math
 import os
 
+from .. import _validate as v
 from .. import inputs
-from ..errors import InputError
 from ..methods import Kernel, Method
 
 #: The work one request may run, in steps of (3) (about 1 s of one core for taylor2).
@@ -64,14 +63,13 @@ def check_run(span: float, step: float, method: Method, step_text: str | None = 
     n = span / step
     if n <= most + 0.5:  # N = Round(t_max / h), (6)
         return
-    per = f"{most:.3g} steps of {method.name}"
-    if t_max_text is not None and abs(math.log10(span / _TYPICAL["t_max"])) > abs(math.log10(_TYPICAL["step"] / step)):
-        raise InputError("t_max", inputs.shown(t_max_text),
-                         f"<= {per} of h = {step:g} s, i.e. t_max <= {most * step:.4g} s (or a larger step)")
+    what = f"steps of {method.name}"
+    if t_max_text is not None and v.furthest(("step", step, _TYPICAL["step"]), ("t_max", span, _TYPICAL["t_max"])) == "t_max":
+        raise v.too_much_work("t_max", inputs.shown(t_max_text), f"<= {v.bound_text(most * step, False, 4)} s with h = {step:g} s",
+                              most, n, what, hint="or a larger step")
     shown = inputs.shown(step_text) if step_text is not None else f"{step:g}"
-    raise InputError("step", shown,
-                     f"such that at most {per} are run: here {span:.4g} s / {step:g} s = {n:.3g} "
-                     f"steps; use step >= {span / most:.3g} s")
+    raise v.too_much_work("step", shown, f">= {v.bound_text(span / most, True)} s for {span:.4g} s", most, n, what,
+                          hint="or a shorter t_max")
 
 
 def search_too_long(span: float, step: float, period: float, method: Method) -> str | None:
@@ -89,5 +87,5 @@ def check_sweep(spans: list[float], steps: list[float], method: Method) -> None:
     total = sum(s / h for s, h in zip(spans, steps))
     most = max_steps(method)
     if total > most:
-        raise InputError("steps", f"{min(steps):g} (smallest)",
-                         f"such that at most {most:.3g} steps of {method.name} are run in all: these need {total:.3g}")
+        raise v.too_much_work("steps", f"{min(steps):g} (smallest)", "larger steps", most, total,
+                              f"steps of {method.name}", in_all=True)

@@ -7,10 +7,10 @@ range. The work a request may cause is bounded by :mod:`pendulab.web.limits`.
 """
 from __future__ import annotations
 
-import math
 from collections.abc import Mapping
 from typing import Any
 
+from .. import _validate as v
 from .. import inputs
 from ..cases import G_TEXT, G
 from ..errors import InputError
@@ -134,4 +134,4 @@ def step_list(params: Mapping[str, str]) -> list[float]:
 
 def unusual(length: float, g: float) -> str:
     """``"length"`` or ``"g"``: the one further, in decades, from an ordinary pendulum (1 m, 9.81 m/s^2)."""
-    return "length" if abs(math.log10(length)) >= abs(math.log10(g / G)) else "g"
+    return v.furthest(("length", length, 1.0), ("g", g, G))

@@ -18,6 +18,7 @@ from typing import Any
 
 import numpy as np
 
+from .. import _validate as v
 from .. import inputs
 from ..cases import PROBLEM5, G
 from ..errors import InputError, PendulabError
@@ -367,13 +368,14 @@ def convergence_view(params: Mapping[str, str], stop: threading.Event | None = N
     steps = sorted(set(parameters.step_list(params)), reverse=True)
     exact = period_view(p["length"], p["amplitude"], p["g"])
     largest = parameters.DEFAULT_STEPS[0]
-    if default_t_max(exact["period"], largest, 0.0) / largest > limits.max_steps(method):
+    need = default_t_max(exact["period"], largest, 0.0) / largest
+    if need > limits.max_steps(method):
         # Even the default list's largest step cannot reach the first return: the period is too long.
         name = parameters.unusual(p["length"], p["g"])
-        raise InputError(
+        raise v.too_much_work(
             name, inputs.shown(parameters.text(params, name, parameters.DEFAULTS["g"])),
-            f"such that the period search (1.5 T + 4h, T = {exact['period']:.3g} s) fits in "
-            f"{limits.max_steps(method):.3g} steps of {method.name} of h = {largest:g} s",
+            f"such that the period search (1.5 T + 4h, T = {exact['period']:.3g} s) fits",
+            limits.max_steps(method), need, f"steps of {method.name} of h = {largest:g} s",
         )
     limits.check_sweep([default_t_max(exact["period"], h, 0.0) for h in steps], steps, method)
     rows = []
