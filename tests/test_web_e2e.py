@@ -22,6 +22,7 @@ from playwright.sync_api import sync_playwright
 
 from _browser import find_chromium
 from pendulab import taylor
+from pendulab.inputs import parse_angle
 from pendulab.web.child import serve_in_child
 from reference import ellipk_period
 
@@ -854,9 +855,10 @@ def test_zoom_fetches_finer_data(browser, server):
         assert before < 100
         d = drawn(pg, "plot-theta")
         t, theta = np.array(d["x"], dtype=float), np.array(d["y"], dtype=float)
-        full = taylor.simulate(1, math.radians(30), 1e-3, 20.0)
+        # The page's 30 deg is the double nearest pi/6 (math.radians(30) is one ulp below it).
+        full = taylor.simulate(1, float(parse_angle("amplitude", "30deg")), 1e-3, 20.0)
         steps = np.rint(t / 1e-3).astype(int)
-        assert np.allclose(theta, full.theta[steps], rtol=0, atol=1e-12)  # the simulation's values at those steps
+        assert np.array_equal(theta, full.theta[steps])  # the simulation's values at those steps, bit for bit
         assert d["xr"] == pytest.approx([0, 20])  # the view stays where it was zoomed
         assert "Zoomed" in pg.locator("#status").text_content()
     finally:
