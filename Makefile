@@ -9,11 +9,14 @@ BIN := $(VENV)/bin
 .PRECIOUS: $(VENV)/.installed-%
 
 $(BIN)/python:
+	@echo "pendulab: creating $(VENV)/ with $(PYTHON) (once)"
 	$(PYTHON) -m venv $(VENV)
 	$(BIN)/python -m pip install --quiet --upgrade pip
 
 $(VENV)/.installed-%: pyproject.toml | $(BIN)/python
+	@echo "pendulab: installing pendulab[$*] and its dependencies into $(VENV)/ (once)"
 	$(BIN)/python -m pip install --quiet -e '.[$*]'
+	@echo "pendulab: installed; the command is $(BIN)/pendulab (or: source $(BIN)/activate)"
 	touch $@
 
 # The fast tier, for every change: lint, types, and the tests not marked slow (tests/conftest.py
@@ -43,6 +46,7 @@ browser:
 		DEBIAN_FRONTEND=noninteractive apt-get install -y -qq chromium >/dev/null; }
 
 report: $(VENV)/.installed-report
+	@echo "pendulab: writing report.pdf for the example group 262, 407, 634"
 	$(BIN)/pendulab report --output report.pdf
 
 bench: $(VENV)/.installed-test
