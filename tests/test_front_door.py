@@ -259,3 +259,20 @@ def test_no_json_key_exact_names_a_period(cli_run, args):
     keys = set(_keys(json.loads(res.out)))
     assert "exact" not in keys  # the glossary's names: period, t_hat, period_as_written
     assert keys & {"period", "t_hat", "length_text", "g", "alpha"}, keys
+
+
+def test_public_functions_have_real_type_hints():
+    from pendulab import estimate_period, period_digits, simulate
+
+    for f in (period_digits, simulate, estimate_period):
+        sig = str(inspect.signature(f))
+        assert "Any" not in sig and "->" in sig, (f.__name__, sig)
+
+
+def test_no_stray_public_names_in_the_period_module():
+    import pendulab.period as period
+
+    public = {n for n in dir(period) if not n.startswith("_")}
+    assert not public & {"v", "sys", "threading", "math", "numbers"}
+    assert set(period.__all__) <= public and "agm_period" in period.__all__
+    assert "v" not in {n for n, _ in inspect.getmembers(period)}

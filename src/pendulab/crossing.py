@@ -11,7 +11,6 @@ from __future__ import annotations
 import math
 import sys
 from dataclasses import dataclass
-from typing import Any
 
 import numpy as np
 
@@ -106,12 +105,12 @@ def default_t_max(exact_period: float, step: float, t0: float = 0.0) -> float:
 
 
 def estimate_period(
-    length: Any,
-    amplitude: Any,
-    step: Any,
-    t_max: Any = None,
-    t0: Any = 0.0,
-    g: Any = G,
+    length: float,
+    amplitude: float,
+    step: float,
+    t_max: float | None = None,
+    t0: float = 0.0,
+    g: float = G,
     method: str = "taylor2",
 ) -> PeriodEstimate:
     """Estimate the period from the simulation (3) by sign change and interpolation.

@@ -12,15 +12,29 @@ References
 """
 from __future__ import annotations
 
-import math
-import numbers
-import sys
+import math as _math
+import numbers as _numbers
 from fractions import Fraction
 from typing import Any
 
-from . import _validate as v
+from . import _validate as _v
 from .cases import G_EXACT, G
 from .exact import Exact, arb_precision, below_pi
+
+__all__ = [
+    "FIXED_ITERATIONS_ULPS",
+    "agm_iterations",
+    "agm_mean",
+    "agm_period",
+    "fixed_iterations_error",
+    "fixed_iterations_limit",
+    "nearest_period",
+    "period_ball",
+    "period_digits",
+    "period_double",
+    "period_mp",
+    "small_angle_period",
+]
 
 # numpy and numba are imported only where arrays are handled: a scalar period (and
 # ``pendulab period``) needs neither.
@@ -28,7 +42,7 @@ from .exact import Exact, arb_precision, below_pi
 #: Upper bound on AGM iterations: from b0 = 1e-300 the AGM converges in 17.
 _MAX_ITERATIONS = 64
 # Stop when a - b <= 4 eps a: the next step would change v by less than eps^2.
-_RTOL = 4 * sys.float_info.epsilon
+_RTOL = 4 * 2.0**-52  # 4 eps
 #: How far (in ulps) the coursework's 7-iteration ``T^`` of (8), the loop (7) in double
 #: precision, is at most from the correctly rounded period for every amplitude up to
 #: :func:`fixed_iterations_limit`. Derived (``u = 2^-53``, relative errors to first order):
@@ -46,7 +60,7 @@ FIXED_ITERATIONS_ULPS = 20
 
 
 def _is_scalar(x: Any) -> bool:
-    if isinstance(x, numbers.Real):
+    if isinstance(x, _numbers.Real):
         return True
     import numpy as np
 
@@ -56,23 +70,23 @@ def _is_scalar(x: Any) -> bool:
 def small_angle_period(length: Any, g: Any = G) -> Any:
     """Small-angle period ``2 pi sqrt(l/g)`` (problem 1). Vectorised over ``length``."""
     if _is_scalar(length):
-        return v.period_scale(v.positive("length", length), v.positive("g", g))
+        return _v.period_scale(_v.positive("length", length), _v.positive("g", g))
     import numpy as np
 
     lengths = np.asarray(length, dtype=float)
     if not np.all(np.isfinite(lengths) & (lengths > 0)):
         bad = lengths[~(np.isfinite(lengths) & (lengths > 0))][0]
-        v.positive("length", bad)
-    g = v.positive("g", g)
+        _v.positive("length", bad)
+    g = _v.positive("g", g)
     if lengths.size:
-        v.positive("length", float(lengths.min()))  # no subnormal lengths
+        _v.positive("length", float(lengths.min()))  # no subnormal lengths
     for extreme in (lengths.min(initial=1.0), lengths.max(initial=1.0)):
-        v.period_scale(float(extreme), g)  # refuses an overflowing period by arithmetic
+        _v.period_scale(float(extreme), g)  # refuses an overflowing period by arithmetic
     with np.errstate(under="ignore", over="ignore"):  # r is only used when finite and normal
         r = lengths / g
-    if np.all((r >= v.TINY) & (r < np.inf)):
+    if np.all((r >= _v.TINY) & (r < np.inf)):
         return 2 * np.pi * np.sqrt(r)
-    return 2 * np.pi * (np.sqrt(lengths) / math.sqrt(g))
+    return 2 * np.pi * (np.sqrt(lengths) / _math.sqrt(g))
 
 
 def agm_mean(b0: Any, iterations: int | None = None) -> Any:
@@ -167,13 +181,13 @@ def agm_period(length: Any, amplitude: Any, g: Any = G, iterations: int | None =
     computed by :func:`nearest_period` (mpmath), which gives the same double.
     """
     if iterations is not None:
-        iterations = v.integer("iterations", iterations, 0, 1000)
+        iterations = _v.integer("iterations", iterations, 0, 1000)
     exact_array = iterations is None and not (_is_scalar(amplitude) and _is_scalar(length))
     # The compiled kernel checks an array of amplitudes itself (in the same pass).
-    alpha = amplitude if exact_array else v.amplitudes("amplitude", amplitude)
+    alpha = amplitude if exact_array else _v.amplitudes("amplitude", amplitude)
     scalar = not exact_array and _is_scalar(alpha) and _is_scalar(length)
     if scalar and iterations is not None:
-        return small_angle_period(length, g) / agm_mean(math.cos(0.5 * alpha), iterations)
+        return small_angle_period(length, g) / agm_mean(_math.cos(0.5 * alpha), iterations)
     if scalar:
         small_angle_period(length, g)  # refuses a length or g whose period overflows
         return nearest_period(float(length), alpha, float(g))
@@ -199,7 +213,7 @@ def agm_period(length: Any, amplitude: Any, g: Any = G, iterations: int | None =
     hard = np.empty(flat_a.size, np.int64)  # pages only touched where written
     count, bad = agm_periods_dd(flat_a, flat_l, g, out, out[:0], hard)
     if bad >= 0:
-        v.amplitude("amplitude", float(flat_a[bad]))  # raises
+        _v.amplitude("amplitude", float(flat_a[bad]))  # raises
     for i in hard[:count]:  # the rounding test failed: a few in 10^6
         out[i] = nearest_period(float(flat_l[i if flat_l.size > 1 else 0]), float(flat_a[i]), g)
     return out.reshape(shape)
@@ -207,7 +221,7 @@ def agm_period(length: Any, amplitude: Any, g: Any = G, iterations: int | None =
 
 def agm_iterations(amplitude: float) -> int:
     """How many iterations of (7) double precision needs at ``amplitude`` (to convergence)."""
-    return _agm(math.cos(0.5 * v.amplitude("amplitude", amplitude)), None)[1]
+    return _agm(_math.cos(0.5 * _v.amplitude("amplitude", amplitude)), None)[1]
 
 
 def _agm(b0: float, iterations: int | None) -> tuple[float, int]:
@@ -220,10 +234,10 @@ def _agm(b0: float, iterations: int | None) -> tuple[float, int]:
         for k in range(_MAX_ITERATIONS):
             if a - b <= _RTOL * a:
                 return 0.5 * (a + b), k
-            a, b = 0.5 * (a + b), math.sqrt(a * b)
+            a, b = 0.5 * (a + b), _math.sqrt(a * b)
         return 0.5 * (a + b), _MAX_ITERATIONS  # pragma: no cover - unreachable for b0 > 0
     for _ in range(iterations):
-        a, b = 0.5 * (a + b), math.sqrt(a * b)
+        a, b = 0.5 * (a + b), _math.sqrt(a * b)
     return 0.5 * (a + b), iterations
 
 
@@ -243,7 +257,7 @@ def _exact_inputs(length: Any, amplitude: Any, g: Any) -> tuple[Exact, Exact, Ex
             return x
         if isinstance(x, str):
             return parser(name, x)
-        return Exact.of(v.finite(name, x))
+        return Exact.of(_v.finite(name, x))
 
     l_ = exact("length", length, parse_number)
     a_ = exact("amplitude", amplitude, parse_angle)
@@ -287,7 +301,7 @@ def period_ball(length: Any, amplitude: Any, g: Any = G_EXACT, prec: int = 128):
     from flint import arb, fmpq
 
     l_, a_, g_ = _exact_inputs(length, amplitude, g)
-    prec = v.integer("prec", prec, 16, 1 << 26)
+    prec = _v.integer("prec", prec, 16, 1 << 26)
     with arb_precision(prec):
         if a_.pi_power == 1:
             c = (1 - a_.coef) / 2
@@ -363,7 +377,8 @@ def _arb_fraction(x) -> Fraction:
     return Fraction(man) * Fraction(2) ** exp
 
 
-def period_digits(length: Any, amplitude: Any, g: Any = G_EXACT, digits: int = 30) -> str:
+def period_digits(length: float | str | Exact, amplitude: float | str | Exact, g: float | str | Exact = G_EXACT,
+                  digits: int = 30) -> str:
     """The period to ``digits`` significant digits, correctly rounded, proved by ball arithmetic.
 
     The period of the inputs as written is enclosed in an Arb ball (:func:`period_ball`);
@@ -373,7 +388,7 @@ def period_digits(length: Any, amplitude: Any, g: Any = G_EXACT, digits: int = 3
     """
     from .errors import NumericalError
 
-    digits = v.integer("digits", digits, 1, 100000)
+    digits = _v.integer("digits", digits, 1, 100000)
     _exact_inputs(length, amplitude, g)
     prec = int(digits * 3.33) + 64
     while prec <= 1 << 24:
@@ -388,7 +403,8 @@ def period_digits(length: Any, amplitude: Any, g: Any = G_EXACT, digits: int = 3
     raise NumericalError(f"the period could not be enclosed to {digits} digits within 2^24 bits")
 
 
-def period_double(length: Any, amplitude: Any, g: Any = G_EXACT) -> float:
+def period_double(length: float | str | Exact, amplitude: float | str | Exact,
+                  g: float | str | Exact = G_EXACT) -> float:
     """The double nearest to the true period of the inputs as written (correctly rounded).
 
     Unlike :func:`agm_period`, which takes doubles, the inputs are exact (see
@@ -436,7 +452,7 @@ def fixed_iterations_error(amplitude: Any, iterations: int = 7, guard: int = 30)
     """
     import mpmath
 
-    n = v.integer("iterations", iterations, 0, 1000)
+    n = _v.integer("iterations", iterations, 0, 1000)
 
     def angle(dps: int):
         if isinstance(amplitude, mpmath.mpf):
@@ -451,7 +467,7 @@ def fixed_iterations_error(amplitude: Any, iterations: int = 7, guard: int = 30)
         k_prime = mpmath.cos(angle(guard + 20) / 2)
         m = 1 - k_prime**2
         if not 0 <= m <= 1:
-            v.amplitude("amplitude", float(angle(20)))
+            _v.amplitude("amplitude", float(angle(20)))
         if m == 0:
             return mpmath.mpf(0)  # b0 = 1: the AGM is 1 from the start
         q = mpmath.qfrom(m=m)

@@ -7,7 +7,6 @@ from __future__ import annotations
 
 from collections.abc import Mapping
 from dataclasses import dataclass
-from typing import Any
 
 import numpy as np
 
@@ -94,12 +93,12 @@ class Trajectory(Result):
 
 
 def simulate(
-    length: Any,
-    amplitude: Any,
-    step: Any,
-    t_max: Any,
-    t0: Any = 0.0,
-    g: Any = G,
+    length: float,
+    amplitude: float,
+    step: float,
+    t_max: float,
+    t0: float = 0.0,
+    g: float = G,
     method: str = "taylor2",
     stride: int = 1,
 ) -> Trajectory:
