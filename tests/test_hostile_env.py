@@ -13,6 +13,7 @@ import threading
 import time
 from pathlib import Path
 
+import numpy as np
 import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
@@ -410,3 +411,49 @@ def test_the_cost_model():
     with pytest.raises(InputError):
         methods.cost_per_step("euler")
     assert math.isfinite(methods.cost_per_step(methods.resolve("verlet")))
+
+
+@pytest.mark.parametrize("kind", ["regular", "pipe"])
+def test_the_byte_cap_is_exact_for_files_and_pipes(monkeypatch, tmp_path, kind):
+    """At the cap exactly: read; one byte more: refused, for a regular file (by its size)
+    and for a pipe (``/dev/fd/N``, by what it gave). The cap lowered to 64 bytes for the search."""
+    monkeypatch.setattr(key, "MAX_FILE_BYTES", 64)
+    line = b"262 407 634\n"
+    for size, ok in ((64, True), (65, False), (63, True), (1000, False)):
+        data = (line * 100)[:size - 1] + b"\n"
+        if kind == "regular":
+            path = tmp_path / f"g{size}.txt"
+            path.write_bytes(data)
+            r = None
+        else:
+            r, w = os.pipe()  # the data waits in the pipe; its only writer closed: then EOF
+            os.write(w, data)
+            os.close(w)
+            path = Path(f"/dev/fd/{r}")
+        try:
+            if ok:
+                assert key.read_groups(path)[0] == (262, 407, 634)
+            else:
+                with pytest.raises(InputError, match="at most 6e\\+01 bytes"):
+                    key.read_groups(path)
+        finally:
+            if r is not None:
+                os.close(r)
+
+
+def test_the_sweeps_cap_weighs_steps_by_cost():
+    """A sweep whose steps are a tenth of the cap (counted with scipy's K, not the library's
+    AGM) is refused for taylor:30, whose steps cost 40 times those of taylor2."""
+    from scipy.special import ellipk
+
+    from pendulab.sweep import MAX_TOTAL_STEPS, sweep
+
+    amplitudes = np.linspace(0.1, 3.0, 2000)
+    periods = 4 * np.sqrt(1.0 / 9.80665) * ellipk(np.sin(amplitudes / 2) ** 2)
+    h = float(np.sum(1.5 * periods)) / (MAX_TOTAL_STEPS / 10)
+    steps = float(np.sum(1.5 * periods + 4 * h)) / h
+    assert steps < MAX_TOTAL_STEPS < steps * methods.cost_per_step("taylor:30")
+    with pytest.raises(InputError, match="weighed by their cost") as err:
+        sweep(amplitudes, h, "taylor:30")
+    need = float(str(err.value).split("these need ")[1].split(")")[0])
+    assert need == pytest.approx(steps * methods.cost_per_step("taylor:30"), rel=1e-3)
