@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import math
 import os
+import re
 import shutil
 import socket
 import stat
@@ -455,5 +456,5 @@ def test_the_sweeps_cap_weighs_steps_by_cost():
     assert steps < MAX_TOTAL_STEPS < steps * methods.cost_per_step("taylor:30")
     with pytest.raises(InputError, match="weighed by their cost") as err:
         sweep(amplitudes, h, "taylor:30")
-    need = float(str(err.value).split("these need ")[1].split(")")[0])
+    need = float(re.search(r"these need ([0-9.e+]+)", str(err.value))[1])
     assert need == pytest.approx(steps * methods.cost_per_step("taylor:30"), rel=1e-3)
