@@ -314,7 +314,7 @@ def test_unknown_paths_are_json_404(client, path):
 def test_an_internal_error_is_500_and_the_server_keeps_serving(monkeypatch):
     c = TestClient(create_app(), base_url="http://localhost", raise_server_exceptions=False)
 
-    def boom(params, stop):
+    def boom(params):
         raise RuntimeError("a bug")
 
     monkeypatch.setattr(views, "simulate_view", boom)

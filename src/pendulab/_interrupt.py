@@ -10,6 +10,10 @@ put back and the signal is delivered again, in plain Python code.
 
 :class:`Terminated` is what the CLI's SIGTERM handler raises (:func:`terminate_handler`):
 like Ctrl+C it unwinds, so ``finally`` blocks and temporary folders are cleaned up.
+
+A thread that serves someone else (the web explorer's worker) stops its work the same way
+when asked: inside :func:`stop_when`, :func:`run_pieces` raises :class:`Stopped` between two
+pieces once the event is set (the request's client has gone).
 """
 from __future__ import annotations
 
@@ -78,11 +82,39 @@ def pieces(n: int, size: int, stride: int = 1) -> Iterator[tuple[int, int]]:
         lo = hi
 
 
+class Stopped(Exception):
+    """The work of a :func:`stop_when` block was stopped between two pieces: nobody wants it now."""
+
+
+_asked = threading.local()
+
+
+@contextlib.contextmanager
+def stop_when(event: threading.Event) -> Iterator[None]:
+    """Inside (in this thread), a run in pieces raises :class:`Stopped` between two pieces
+    once ``event`` is set."""
+    before = getattr(_asked, "event", None)
+    _asked.event = event
+    try:
+        yield
+    finally:
+        _asked.event = before
+
+
+def stopping() -> None:
+    """Raise :class:`Stopped` if this thread's :func:`stop_when` event is set (a check between pieces)."""
+    event = getattr(_asked, "event", None)
+    if event is not None and event.is_set():
+        raise Stopped
+
+
 def run_pieces(bounds: Iterable[tuple[int, int]], run: Callable[[int, int], bool]) -> None:
     """Call ``run(lo, hi)`` for each piece, under :func:`deferred`: a signal stops the loop
     between two pieces (one piece's time at most) and is raised then. ``run`` returns True
-    when the work is finished early (a period search that found the return)."""
+    when the work is finished early (a period search that found the return). Inside
+    :func:`stop_when`, a set event stops it too, raising :class:`Stopped`."""
     with deferred() as got:
         for lo, hi in bounds:
+            stopping()
             if got or run(lo, hi):
                 return

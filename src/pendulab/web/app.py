@@ -29,8 +29,8 @@ on the event loop at once; each simulation runs in a pool of its own of
 limit on the cores. A request waiting for a slot is a queued work item awaited on the event
 loop, holding no thread, so a class's worth of heavy requests never stops the page from
 answering; the numba kernels release the GIL while they run. When a client goes away, its
-queued work is dropped and its running work stops at the next chunk
-(:class:`pendulab.web.views.Cancelled`).
+queued work is dropped and its running work stops between two pieces of its kernel runs
+(:func:`pendulab._interrupt.stop_when`).
 """
 from __future__ import annotations
 
@@ -53,6 +53,7 @@ from fastapi.middleware.gzip import GZipMiddleware
 from fastapi.responses import FileResponse, HTMLResponse, JSONResponse, Response, StreamingResponse
 from starlette.exceptions import HTTPException as StarletteHTTPException
 
+from .._interrupt import Stopped, stop_when
 from ..errors import InputError
 from . import guard, limits, models, views
 
@@ -143,7 +144,7 @@ class _Slots:
             gone.cancel()
         if not work.done():
             stop.set()
-            work.cancel()  # a queued item is dropped; a running one sees stop at its next chunk
+            work.cancel()  # a queued item is dropped; a running one sees stop at its next piece
             return None
         return work.result()
 
@@ -217,10 +218,11 @@ def create_app(allowed_hosts: Iterable[str] = guard.LOCAL_HOSTS) -> FastAPI:
 
         def work(stop: threading.Event) -> Response:
             try:
-                return Response(_encode(call(params, stop)), media_type="application/json")
+                with stop_when(stop):
+                    return Response(_encode(call(params)), media_type="application/json")
             except InputError as exc:
                 return JSONResponse(error_body(exc), status_code=422)
-            except views.Cancelled:
+            except Stopped:
                 return Response(status_code=499)  # nobody reads it
 
         answer = await slots.run_while_connected(request, work)

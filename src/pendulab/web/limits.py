@@ -1,8 +1,9 @@
 """What one request of the explorer may cost: work weighted by the method, points, bytes.
 
 Work is counted in steps of the coursework's method (3) (``taylor2``): a step of another
-method counts as :func:`weight` of them, so ``taylor:30``, about twenty times dearer a
-step, gets about a twentieth of the steps. Every check runs before any work starts and
+method counts as :func:`pendulab.methods.cost_per_step` of them (measured), so
+``taylor:30``, about forty times dearer a step, gets about a fortieth of the steps. The
+trajectory and the period search of one request are each within :data:`MAX_WORK`. Every check runs before any work starts and
 raises :class:`pendulab.errors.InputError` naming the field to change.
 """
 from __future__ import annotations
@@ -11,7 +12,7 @@ import os
 
 from .. import _validate as v
 from .. import inputs
-from ..methods import Kernel, Method
+from ..methods import Method
 
 #: The work one request may run, in steps of (3) (about 1 s of one core for taylor2).
 MAX_WORK = 10_000_000
@@ -33,23 +34,9 @@ SIMULATION_SLOTS = max(2, os.cpu_count() or 2)
 #: An ordinary view (the defaults): which of step and t_max is unusual is judged against them.
 _TYPICAL = {"step": 1e-3, "t_max": 20.0}
 
-# Cost of one step relative to one step of (3): per-step times of the explorer's streamed
-# pass (sampling.simulate_arrays, 2-core machine, best of 3): rk4 1.82, verlet 1.21,
-# taylor:P 2.4 (P = 2) to 25.9 (P = 30), about 2.5 + P^2/36 (the series of sin theta(t)
-# are Cauchy products of P terms).
-_NAMED_WEIGHT = {Kernel.TAYLOR2: 1.0, Kernel.RK4: 1.8, Kernel.VERLET: 1.2}
-
-
-def weight(method: Method) -> float:
-    """The cost of one step of ``method`` in steps of (3) (``taylor2``)."""
-    if method.code == Kernel.TAYLOR:
-        return 2.5 + method.order * method.order / 36.0
-    return _NAMED_WEIGHT.get(method.code, 1.0)
-
-
 def max_steps(method: Method) -> int:
     """The most steps of ``method`` one request may run."""
-    return int(MAX_WORK / weight(method))
+    return v.steps_for(method, MAX_WORK)
 
 
 def check_run(span: float, step: float, method: Method, step_text: str | None = None,

@@ -4,19 +4,19 @@
 min/max reduction of Jugel et al., "M4: A Visualization-Oriented Time Series Data
 Aggregation", PVLDB 7(10), 2014); the phase portrait keeps whole orbits; the animation and
 the global error keep evenly spaced steps. :func:`simulate_arrays` runs the one streamed
-pass (:func:`pendulab.web._view.scan`) in chunks, checking between chunks whether the
-request is still wanted.
+pass (:func:`pendulab.web._view.scan`) in pieces, as the library's drivers run theirs, so a
+request whose client has gone stops between two pieces.
 """
 from __future__ import annotations
 
 import math
-import threading
 from collections.abc import Mapping
 from typing import Any
 
 import numpy as np
 
-from . import limits
+from .._interrupt import CHUNK_COST, pieces, run_pieces
+from ..methods import cost_per_step
 
 #: Phase-portrait points per exact period, and at most this many in all.
 PHASE_PER_PERIOD, PHASE_POINTS = 256, 4000
@@ -24,14 +24,6 @@ PHASE_PER_PERIOD, PHASE_POINTS = 256, 4000
 FRAME_POINTS = 8000
 #: Global-error samples (the exact motion is evaluated there): 64 per period, at most this many.
 ERROR_POINTS = 20000
-#: Steps of (3) run between two looks at the cancel flag (tens of milliseconds).
-CHUNK_WORK = 1 << 20
-
-
-class Cancelled(Exception):
-    """The request's client has gone: the work stopped between two chunks."""
-
-
 def finite_list(a: np.ndarray) -> list:
     """A JSON list; a non-finite value (a blown-up simulation) becomes ``null``."""
     out = a.tolist()
@@ -147,16 +139,15 @@ def gapped(values: np.ndarray, idx: np.ndarray, stride: int) -> list:
     return out
 
 
-def simulate_arrays(p: Mapping[str, Any], points: int, stop: threading.Event | None = None) -> dict[str, Any]:
+def simulate_arrays(p: Mapping[str, Any], points: int) -> dict[str, Any]:
     """One streamed pass over the simulation: what the page draws, in O(points) memory.
 
     ``theta(t)``: the min and max of ``theta`` in each of ``points // 2`` columns of steps
     (every step when ``n + 1 <= points``); the energy drift likewise; the phase portrait
     and animation samples; the first step that left the oscillation or went non-finite.
-    The steps run in chunks of :data:`CHUNK_WORK` steps of (3); when ``stop`` is set
-    between two chunks, raises :class:`Cancelled`.
+    The steps run in pieces (:func:`pendulab._interrupt.run_pieces`): inside
+    :func:`pendulab._interrupt.stop_when`, a set event stops the pass between two pieces.
     """
-    from ..methods import resolve
     from ..period import agm_period
     from ..taylor import method_code, step_count
     from ._view import scan
@@ -187,12 +178,13 @@ def simulate_arrays(p: Mapping[str, Any], points: int, stop: threading.Event | N
     z = np.array([p["amplitude"], omega0])
     # col, first step of the next column (ceil((n+1)/nb)), next sample, left, bad
     where = np.array([0, (n + 1 + nb - 1) // nb, 0, -1, -1], dtype=np.int64)
-    chunk = max(1, int(CHUNK_WORK / limits.weight(resolve(p["method"]))))
-    for i0 in range(0, n + 1, chunk):
-        if stop is not None and stop.is_set():
-            raise Cancelled
-        scan(code, order, p["amplitude"], c, h, n, i0, min(n + 1, i0 + chunk), z, where, samples, s_th, s_om,
+
+    def run(i0: int, i1: int) -> bool:
+        scan(code, order, p["amplitude"], c, h, n, i0, i1, z, where, samples, s_th, s_om,
              i_lo, i_hi, th_lo, th_hi, om_lo, om_hi, e_i_lo, e_i_hi, e_lo, e_hi, omega0)
+        return False
+
+    run_pieces(pieces(n + 1, max(1, int(CHUNK_COST / cost_per_step(p["method"])))), run)
     left, bad = int(where[3]), int(where[4])
     idx, theta = columns(i_lo, th_lo, i_hi, th_hi)
     _, omega = columns(i_lo, om_lo, i_hi, om_hi)

@@ -12,7 +12,6 @@ from __future__ import annotations
 
 import functools
 import math
-import threading
 from collections.abc import Iterator, Mapping
 from typing import Any
 
@@ -24,9 +23,9 @@ from ..cases import PROBLEM5, G
 from ..errors import InputError, PendulabError
 from ..methods import resolve
 from . import limits, parameters, sampling
-from .sampling import Cancelled, finite_list
+from .sampling import finite_list
 
-__all__ = ["Cancelled", "config_view", "convergence_view", "motion_view", "period_curve_view", "period_endpoint",
+__all__ = ["config_view", "convergence_view", "motion_view", "period_curve_view", "period_endpoint",
            "simulate_view", "trajectory_csv", "warm"]
 
 #: An energy drift above this fraction of the swing's energy is flagged.
@@ -197,7 +196,7 @@ def _flags(p: Mapping[str, Any], sim: Mapping[str, Any], err_t: np.ndarray | Non
     }
 
 
-def simulate_view(params: Mapping[str, str], stop: threading.Event | None = None) -> dict[str, Any]:
+def simulate_view(params: Mapping[str, str]) -> dict[str, Any]:
     """``GET /api/simulate``: what the page draws, the exact motion and period, estimates, flags.
 
     ``t, theta``: the min and max of ``theta`` in each of ``points // 2`` columns of steps, in
@@ -207,8 +206,7 @@ def simulate_view(params: Mapping[str, str], stop: threading.Event | None = None
     animation, ``exact_frames`` the exact state at the same times, ``exact_phase`` one
     period of the exact orbit. ``exact``: the exact motion with the same column rule; ``error``:
     ``theta_sim - theta_exact`` 64 times per period (at most 20 000; min/max per column); ``energy``: the
-    drift ``(E - E0)/(m g l)`` at every step, min/max per column. ``stop`` set while the
-    simulation runs raises :class:`Cancelled`.
+    drift ``(E - E0)/(m g l)`` at every step, min/max per column.
     """
     p = parameters.simulation(params)
     points = parameters.points(params, limits.DEFAULT_PLOT_POINTS, limits.MAX_POINTS)
@@ -219,7 +217,7 @@ def simulate_view(params: Mapping[str, str], stop: threading.Event | None = None
         est = {"estimate": None, "reason": (
             f"the period is estimated from a release at rest; this pendulum is launched with theta'(0) = {p['omega0']:g} "
             f"rad/s: its exact {'time for one turn' if launched['circulates'] else 'period'} is shown")}
-    sim = sampling.simulate_arrays(p, points, stop)
+    sim = sampling.simulate_arrays(p, points)
     sim["circulates"] = bool(launched and launched["circulates"])
     h, n, nb = p["step"], sim["n"], sim["columns"]
     f_idx, e_idx = sim["frame_idx"], sim["error_idx"]
@@ -356,11 +354,8 @@ def _csv_block(code: int, order: int, state: tuple[float, float], c: float, h: f
     return (a, b), rows
 
 
-def convergence_view(params: Mapping[str, str], stop: threading.Event | None = None) -> dict[str, Any]:
-    """``GET /api/convergence``: the period estimates and their errors for a list of steps.
-
-    ``stop`` set between two steps raises :class:`Cancelled`.
-    """
+def convergence_view(params: Mapping[str, str]) -> dict[str, Any]:
+    """``GET /api/convergence``: the period estimates and their errors for a list of steps."""
     from ..crossing import default_t_max
 
     p = parameters.pendulum(params)
@@ -380,8 +375,6 @@ def convergence_view(params: Mapping[str, str], stop: threading.Event | None = N
     limits.check_sweep([default_t_max(exact["period"], h, 0.0) for h in steps], steps, method)
     rows = []
     for h in steps:
-        if stop is not None and stop.is_set():
-            raise Cancelled
         est = estimate_view(p["length"], p["amplitude"], h, p["g"], method.name)
         rows.append({"step": h} | est)
     return {"method": method.name, "order": method.order, "period": exact, "rows": rows}
