@@ -5,11 +5,12 @@ import re
 import numpy as np
 import pytest
 
-from pendulab.crossing import estimate_period, observed_orders
+from pendulab.crossing import estimate_period, observed_orders, search_period
 from pendulab.errors import InputError, LeftOscillationError, NoReturnError
+from pendulab.methods import Status
 from pendulab.period import agm_period
 from pendulab.taylor import simulate
-from reference import G
+from reference import G, taylor2_plain
 
 L3 = 2.0800838231  # problem 3(b), the spec's example group
 A3 = 4 * math.pi / 5
@@ -189,3 +190,45 @@ def test_sweep_and_estimate_agree_where_theta_prime_underflows():
     r = sweep(np.array([1e-306, 5e-324, 1e-3]), [1e-3])
     assert list(r["status"]) == ["no_return", "no_return", "found"]
     assert np.isnan(r["cubic"][:2]).all()
+
+
+# --- failure as data: search_period's status and its numbers ---------------------------------
+
+
+def test_search_finds_what_estimate_period_returns():
+    s = search_period(1.0, 0.5, 1e-3)
+    e = estimate_period(1.0, 0.5, 1e-3)
+    assert s.status == Status.FOUND and s.found and s.estimate is not None
+    assert (s.estimate.j, s.estimate.bracket, s.estimate.cubic, s.estimate.linear) == (e.j, e.bracket, e.cubic, e.linear)
+    assert s.period == e.period and s.t_left is None and s.suggested_t_max is None
+    assert s.to_dict()["estimate"]["cubic"] == e.cubic
+
+
+def test_over_the_top_is_a_status_with_the_time_of_the_plain_loop():
+    length, alpha, h = 1.0, 3.0, 0.5
+    s = search_period(length, alpha, h)
+    assert s.status == Status.LEFT_OSCILLATION and s.estimate is None and not s.found
+    # The coursework's plain loop of (3): the first point with |theta| >= pi.
+    z1, _ = taylor2_plain(alpha, -G / length, h, int(round(s.t_max / h)))
+    first = int(np.argmax(np.abs(z1) >= math.pi))
+    assert abs(z1[first]) >= math.pi and s.t_left == first * h
+    with pytest.raises(LeftOscillationError) as info:
+        estimate_period(length, alpha, h)
+    assert info.value.t == s.t_left
+
+
+def test_no_return_is_a_status_with_a_t_max_that_holds_the_return():
+    s = search_period(1.0, 1.0, 1e-2, t_max=1.0)
+    assert s.status == Status.NO_RETURN and s.estimate is None and not s.underflow
+    assert s.t_max == 1.0 and s.suggested_t_max is not None and s.suggested_t_max > s.period
+    assert search_period(1.0, 1.0, 1e-2, t_max=s.suggested_t_max).found
+    with pytest.raises(NoReturnError) as info:
+        estimate_period(1.0, 1.0, 1e-2, t_max=1.0)
+    assert (info.value.t_max, info.value.suggested_t_max) == (s.t_max, s.suggested_t_max)
+
+
+def test_an_underflowing_motion_is_no_return_that_no_t_max_helps():
+    s = search_period(1.0, 1e-300, 1e-9, t_max=1.0)  # h (g/l) alpha ~ 1e-308, below the smallest normal double
+    assert s.status == Status.NO_RETURN and s.underflow and s.suggested_t_max is None and s.j is None
+    with pytest.raises(NoReturnError, match="no t_max helps"):
+        estimate_period(1.0, 1e-300, 1e-9, t_max=1.0)

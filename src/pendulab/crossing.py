@@ -104,6 +104,130 @@ def default_t_max(exact_period: float, step: float, t0: float = 0.0) -> float:
     return t0 + 1.5 * exact_period + 4 * step
 
 
+@dataclass(frozen=True, eq=False)
+class PeriodSearch(Result):
+    """The search for the first return to ``P``, as data (scipy's ``OdeResult`` habit).
+
+    A failure that the physics or the step explains (no return within ``t_max``, the
+    discrete pendulum over the top, the return too early for the interpolation nodes) is a
+    ``status`` with the numbers that show it; :func:`estimate_period` raises on it.
+
+    Attributes
+    ----------
+    status : Status
+        ``FOUND``, ``NO_RETURN``, ``LEFT_OSCILLATION`` or ``TOO_EARLY`` (``methods.Status``).
+    estimate : PeriodEstimate or None
+        The estimate where ``status`` is ``FOUND``.
+    length, amplitude, step, g, t0, t_max : float
+        The search's inputs (``t_max`` as used: :func:`default_t_max` when not given).
+    method : str
+        Integrator name.
+    period : float
+        The AGM period (8), iterated to convergence.
+    suggested_t_max : float or None
+        ``NO_RETURN``: a ``t_max`` that holds the return; None where no ``t_max`` helps
+        (``theta'`` changes below the smallest normal double: ``underflow``).
+    underflow : bool
+        ``NO_RETURN`` because ``h (g/l) alpha`` is below the smallest normal double.
+    t_left : float or None
+        ``LEFT_OSCILLATION``: ``t_(j+1)``, the first point with ``|theta| >= pi``.
+    j : int or None
+        The step index the kernel stopped at (None where it did not run).
+    """
+
+    status: Status
+    estimate: PeriodEstimate | None
+    length: float
+    amplitude: float
+    step: float
+    g: float
+    t0: float
+    t_max: float
+    method: str
+    period: float
+    suggested_t_max: float | None = None
+    underflow: bool = False
+    t_left: float | None = None
+    j: int | None = None
+
+    @property
+    def found(self) -> bool:
+        return self.status == Status.FOUND
+
+
+def search_period(
+    length: Any,
+    amplitude: Any,
+    step: Any,
+    t_max: Any = None,
+    t0: Any = 0.0,
+    g: Any = G,
+    method: str = "taylor2",
+) -> PeriodSearch:
+    """The period from the simulation (3) by sign change and interpolation, failure as a status.
+
+    Parameters as :func:`estimate_period`; bad input raises :class:`InputError`, and an
+    outcome without a period (no return, over the top) is :attr:`PeriodSearch.status`.
+    """
+    length = v.positive("length", length)
+    alpha = v.amplitude("amplitude", amplitude)
+    g = v.positive("g", g)
+    step = v.positive("step", step)
+    t0 = v.finite("t0", t0)
+    if alpha == 0:
+        raise InputError("amplitude", amplitude, "> 0 for a period from a simulation (at rest nothing moves)")
+    exact = agm_period(length, alpha, g)
+    if t_max is None:
+        t_max = default_t_max(exact, step, t0)
+    t0, t_max, step = v.time_span(t0, t_max, step)
+    m = resolve(method)
+    n = v.steps_within("step", t0, t_max, step, v.steps_for(m, MAX_STEPS), v.steps_of(m))
+    from ._kernels import first_return_pieces
+
+    c = -g / length
+    common: dict[str, Any] = {"estimate": None, "length": length, "amplitude": alpha, "step": step, "g": g,
+                              "t0": t0, "t_max": t_max, "method": method, "period": float(exact)}
+    if alpha * abs(c) * step < sys.float_info.min:
+        # theta' changes by about h (g/l) sin(theta) per step: below the smallest normal
+        # double its changes are lost to underflow (5e-324 never moves theta' at all).
+        return PeriodSearch(Status.NO_RETURN, underflow=True, **common)
+    status, j, z1w, z2w = first_return_pieces(int(m.code), m.order, alpha, c, step, n)
+    status = Status(int(status))
+    if status == Status.NO_RETURN:
+        suggest = default_t_max(exact, step, t0)
+        if suggest <= t_max:
+            suggest = t0 + 2 * (t_max - t0)
+        return PeriodSearch(status, suggested_t_max=suggest, j=int(j), **common)
+    if status == Status.LEFT_OSCILLATION:
+        # t_{j+1} of (6): the first point with |theta| >= pi
+        return PeriodSearch(status, t_left=t0 + (j + 1) * step, j=int(j), **common)
+    if status != Status.FOUND:
+        return PeriodSearch(status, j=int(j), **common)
+    # Times relative to t0, t_k = k h (6): the nodes j-2 .. j+2.
+    t = (j - 2 + np.arange(5)) * step
+    z2_j, z2_j1 = z2w[2], z2w[3]
+    linear = linear_zero(t[2], step, z2_j, z2_j1)
+    interp = inverse_cubic(z2w[1:5], t[1:5], (z2w[0], t[0]))
+    dense = dense_crossing((z1w[2], z1w[3]), (z2w[2], z2w[3]), c, step, float(t[2]))
+    est = PeriodEstimate(
+        step=step,
+        method=method,
+        j=int(j),
+        bracket=(float(t[2]), float(t[3])),
+        linear=float(linear),
+        cubic=interp.value,
+        cubic_error_estimate=interp.error_estimate,
+        interpolation=interp,
+        period=float(exact),
+        window_t=t,
+        window_theta=z1w.copy(),
+        window_omega=z2w.copy(),
+        dense=float(dense),
+    )
+    common["estimate"] = est
+    return PeriodSearch(status, j=int(j), **common)
+
+
 def estimate_period(
     length: float,
     amplitude: float,
@@ -114,6 +238,8 @@ def estimate_period(
     method: str = "taylor2",
 ) -> PeriodEstimate:
     """Estimate the period from the simulation (3) by sign change and interpolation.
+
+    :func:`search_period`, raising where it finds no period.
 
     Parameters
     ----------
@@ -134,72 +260,38 @@ def estimate_period(
     LeftOscillationError
         The discrete pendulum went over the top: the step is too large for the amplitude.
     """
-    length = v.positive("length", length)
-    alpha = v.amplitude("amplitude", amplitude)
-    g = v.positive("g", g)
-    step = v.positive("step", step)
-    t0 = v.finite("t0", t0)
-    if alpha == 0:
-        raise InputError("amplitude", amplitude, "> 0 for a period from a simulation (at rest nothing moves)")
-    exact = agm_period(length, alpha, g)
-    if t_max is None:
-        t_max = default_t_max(exact, step, t0)
-    t0, t_max, step = v.time_span(t0, t_max, step)
-    m = resolve(method)
-    n = v.steps_within("step", t0, t_max, step, v.steps_for(m, MAX_STEPS), v.steps_of(m))
-    from ._kernels import first_return_pieces
+    s = search_period(length, amplitude, step, t_max, t0, g, method)
+    if s.estimate is not None:
+        return s.estimate
+    raise search_error(s)
 
-    c = -g / length
-    if alpha * abs(c) * step < sys.float_info.min:
-        # theta' changes by about h (g/l) sin(theta) per step: below the smallest normal
-        # double its changes are lost to underflow (5e-324 never moves theta' at all).
-        raise NoReturnError(
+
+def search_error(s: PeriodSearch) -> NumericalError:
+    """The exception for a search without a period, its message naming what to change."""
+    alpha, step, t_max = s.amplitude, s.step, s.t_max
+    if s.underflow:
+        k = s.g / s.length
+        return NoReturnError(
             f"amplitude {alpha:.3g} rad is too small for a simulation in double precision: theta' changes by "
-            f"about h (g/l) alpha = {abs(c) * step:.3g} x {alpha:.3g} rad/s per step, below the smallest normal double "
+            f"about h (g/l) alpha = {k * step:.3g} x {alpha:.3g} rad/s per step, below the smallest normal double "
             f"{sys.float_info.min:.3g}, so its sign changes are lost to underflow; use an amplitude >= "
-            f"{sys.float_info.min / (abs(c) * step):.3g} rad at this step (no t_max helps)"
+            f"{sys.float_info.min / (k * step):.3g} rad at this step (no t_max helps)"
         )
-    status, j, z1w, z2w = first_return_pieces(int(m.code), m.order, alpha, c, step, n)
-    if status == Status.NO_RETURN:
-        suggest = default_t_max(exact, step, t0)
-        if suggest <= t_max:
-            suggest = t0 + 2 * (t_max - t0)
-        raise NoReturnError(
+    if s.status == Status.NO_RETURN:
+        return NoReturnError(
             f"the simulation does not return to P = (alpha, 0) within t_max = {t_max:g} s "
-            f"(exact period {exact:.6g} s); try --t-max {suggest:.4g}", t_max=t_max, suggested_t_max=suggest
+            f"(exact period {s.period:.6g} s); try --t-max {s.suggested_t_max:.4g}",
+            t_max=t_max, suggested_t_max=s.suggested_t_max,
         )
-    if status == Status.LEFT_OSCILLATION:
-        left = t0 + (j + 1) * step  # t_{j+1} of (6): the first point with |theta| >= pi
-        raise LeftOscillationError(
-            f"the discrete pendulum went over the top (|theta| > pi) at t = {left:.6g} s: "
-            f"step h = {step:g} is too large for amplitude {alpha:.6g} rad with method {method}; use a smaller step",
-            t=left,
+    if s.status == Status.LEFT_OSCILLATION:
+        return LeftOscillationError(
+            f"the discrete pendulum went over the top (|theta| > pi) at t = {s.t_left:.6g} s: "
+            f"step h = {step:g} is too large for amplitude {alpha:.6g} rad with method {s.method}; use a smaller step",
+            t=s.t_left,
         )
-    if status != Status.FOUND:
-        raise NumericalError(
-            f"the sign change of theta' comes at step j = {j}, too early for four interpolation nodes: "
-            f"step h = {step:g} is too large; use a smaller step"
-        )
-    # Times relative to t0, t_k = k h (6): the nodes j-2 .. j+2.
-    t = (j - 2 + np.arange(5)) * step
-    z2_j, z2_j1 = z2w[2], z2w[3]
-    linear = linear_zero(t[2], step, z2_j, z2_j1)
-    interp = inverse_cubic(z2w[1:5], t[1:5], (z2w[0], t[0]))
-    dense = dense_crossing((z1w[2], z1w[3]), (z2w[2], z2w[3]), c, step, float(t[2]))
-    return PeriodEstimate(
-        step=step,
-        method=method,
-        j=int(j),
-        bracket=(float(t[2]), float(t[3])),
-        linear=float(linear),
-        cubic=interp.value,
-        cubic_error_estimate=interp.error_estimate,
-        interpolation=interp,
-        period=float(exact),
-        window_t=t,
-        window_theta=z1w.copy(),
-        window_omega=z2w.copy(),
-        dense=float(dense),
+    return NumericalError(
+        f"the sign change of theta' comes at step j = {s.j}, too early for four interpolation nodes: "
+        f"step h = {step:g} is too large; use a smaller step"
     )
 
 

@@ -11,9 +11,10 @@ from dataclasses import dataclass
 from typing import TYPE_CHECKING, Literal
 
 from . import cases
-from .crossing import PeriodEstimate, estimate_period, observed_orders
+from .crossing import PeriodEstimate, estimate_period, observed_orders, search_error, search_period
 from .errors import NumericalError
 from .group import GroupLength, group_length
+from .methods import Status
 from .period import FIXED_ITERATIONS_ULPS, agm_period
 from .results import Result
 from .taylor import Trajectory, simulate
@@ -126,17 +127,16 @@ def plot_outcome(length: float, amplitude: float, step: float, exact: float):
     goes over the top (``|z1| > pi``), which the exact pendulum, released below the top
     at rest, never does.
     """
-    from .errors import LeftOscillationError, NoReturnError
-
     search = PLOT_SEARCH_PERIODS * exact
-    try:
-        est = estimate_period(length, amplitude, step, search)
-    except LeftOscillationError as exc:  # it carries the time it went over the top
-        assert exc.t is not None
-        return LEAVES, exc.t, None, plot_t_max(exc.t, step)
-    except NoReturnError:
+    found = search_period(length, amplitude, step, search)
+    if found.status == Status.LEFT_OSCILLATION:  # the search carries the time it went over the top
+        assert found.t_left is not None
+        return LEAVES, found.t_left, None, plot_t_max(found.t_left, step)
+    if found.estimate is None:
+        if found.status != Status.NO_RETURN:
+            raise search_error(found)
         return NO_RETURN, None, None, plot_t_max(search / 1.25, step)
-    return RETURNS, None, est, plot_t_max(max(exact, est.bracket[1]), step)
+    return RETURNS, None, found.estimate, plot_t_max(max(exact, found.estimate.bracket[1]), step)
 
 
 def problem3(
