@@ -11,6 +11,7 @@ from __future__ import annotations
 import math
 import sys
 from dataclasses import dataclass
+from typing import Any
 
 import numpy as np
 
@@ -156,12 +157,12 @@ class PeriodSearch(Result):
 
 
 def search_period(
-    length: Any,
-    amplitude: Any,
-    step: Any,
-    t_max: Any = None,
-    t0: Any = 0.0,
-    g: Any = G,
+    length: float,
+    amplitude: float,
+    step: float,
+    t_max: float | None = None,
+    t0: float = 0.0,
+    g: float = G,
     method: str = "taylor2",
 ) -> PeriodSearch:
     """The period from the simulation (3) by sign change and interpolation, failure as a status.
