@@ -7,6 +7,7 @@ g = 4 pi^2 l / T^2); the rest are the library's own results, which the report mu
 from __future__ import annotations
 
 import functools
+import gc
 import math
 import re
 
@@ -241,6 +242,22 @@ def test_cli_writes_the_report(tmp_path, capsys):
     assert "O passo é demasiado grande para este pêndulo" in text and "sai da oscilação em t = 4 s" in text
     err = capsys.readouterr().err
     assert "\x1b[" not in err  # no progress display when stderr is not a terminal
+    assert gc.isenabled()  # the cycle collector, paused for the report, is back
+
+
+def test_cli_pauses_the_cycle_collector_only_while_building(monkeypatch, tmp_path):
+    import pendulab.report
+
+    seen = []
+
+    def fake(*args, **kwargs):
+        seen.append(gc.isenabled())
+        raise RuntimeError("stop")
+
+    monkeypatch.setattr(pendulab.report, "build_report", fake)
+    with pytest.raises(RuntimeError):
+        main(["report", "--output", str(tmp_path / "r.pdf")])
+    assert seen == [False] and gc.isenabled()
 
 
 @pytest.mark.parametrize(

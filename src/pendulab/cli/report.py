@@ -1,6 +1,8 @@
 """``pendulab report``: the PDF that answers the whole coursework."""
 from __future__ import annotations
 
+import gc
+
 import click
 
 from .. import inputs
@@ -64,7 +66,16 @@ def report(more: tuple[str, ...], students: str, lang: str, output: str, names: 
     numbers = inputs.students("students", ([students] if given or not more else []) + list(more))
     group_length(numbers)  # a sum with no non-zero digit fails here, before the work
     cover = None if names is None else inputs.names("names", names, len(numbers))
-    written = build_report(numbers, lang=lang, output=output, progress=True, names=cover)
+    # The cycle collector paused for the one report: its passes over matplotlib's many
+    # short-lived objects are about a tenth of a warm report's CPU time
+    # (benchmarks/bench_report.py), and one report's cycles (a few figures) are small.
+    was = gc.isenabled()
+    gc.disable()
+    try:
+        written = build_report(numbers, lang=lang, output=output, progress=True, names=cover)
+    finally:
+        if was:
+            gc.enable()
     click.echo(f"pendulab: wrote {output}", err=True)
     if as_json:
         from ..key import answer_key
