@@ -303,3 +303,12 @@ def test_problem4_on_the_programs_data_is_the_engines():
     assert given.exact_deviation == own.exact_deviation and given.taylor_error == own.taylor_error
     with pytest.raises(InputError, match="taylor_data"):
         problems.problem4(taylor_data=(t[:-1], z1[:-1], z2[:-1]))
+
+
+def test_programs_refuse_a_folder_whose_parent_is_missing(tmp_path, capsys):
+    """A mistyped path is refused in one line, and nothing is created on the way."""
+    target = tmp_path / "no" / "such" / "dir"
+    assert main(["programs", "--output", str(target)]) == 2
+    lines = capsys.readouterr().err.strip().splitlines()
+    assert len(lines) == 1 and "--output" in lines[0] and "inside a folder that exists" in lines[0]
+    assert not (tmp_path / "no").exists()

@@ -75,13 +75,13 @@ def write(folder: str | os.PathLike, lang: str = "en") -> list[Path]:
 
     if lang not in LANGUAGES:
         raise InputError("lang", lang, "one of " + ", ".join(LANGUAGES))
-    allowed = "a folder to write the programs into (created if missing)"
+    allowed = "a folder to write the programs into (created if missing, inside a folder that exists)"
     out = Path(path_text("output", folder, allowed))
     paths = []
     try:
         if out.exists() and not out.is_dir():
             raise InputError("output", shown(str(folder)), allowed + "; this is a file")
-        out.mkdir(parents=True, exist_ok=True)
+        out.mkdir(exist_ok=True)  # one level, as mkdir does: a mistyped path is refused, not built
         for name in PROGRAMS:
             write_text(out / name, source(name, lang))
             paths.append(out / name)

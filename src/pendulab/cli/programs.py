@@ -8,7 +8,7 @@ from ._common import choice, emit_json, json_option
 
 @click.command()
 @click.option("--output", "-o", required=True, metavar="DIR",
-              help="The folder to write them into (created if missing; each file written atomically).")
+              help="The folder to write them into (created if missing, inside a folder that exists; each file written atomically).")
 @click.option("--lang", type=choice("en", "pt"), default="en", show_default=True,
               help="Language of the comments: English or Portuguese (the code is the same).")
 @json_option
