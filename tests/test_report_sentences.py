@@ -321,10 +321,10 @@ def test_figure3_points_over_the_curve_and_figure4_band_visible():
 
     r = problems.problem4()
     fig, (a, b) = plt.subplots(1, 2)
-    fit(a, r)
+    fit(r, a)
     curve, points = a.lines[0], a.lines[1]
     assert len(points.get_xdata()) == r.points and points.get_zorder() > curve.get_zorder()
-    fit_residuals(b, r)
+    fit_residuals(r, b)
     assert b.get_yscale() == "symlog"
     # The band +-tolerance takes a visible share of the axis height (it was 1/200 on a linear axis).
     lo, hi = b.get_ylim()

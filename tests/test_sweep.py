@@ -134,7 +134,7 @@ def test_plot_draws_one_line_per_method_and_step():
     from pendulab.plots.beyond import sweep_errors
 
     r = sweep(np.radians([10, 90, 179.9]), [1e-2, 0.5], methods=["taylor2"])
-    ax = sweep_errors(None, r)
+    ax = sweep_errors(r)
     assert [line.get_label() for line in ax.lines] == ["taylor2, h = 0.01", "taylor2, h = 0.5"]
     for line, row in zip(ax.lines, r.summary()):
         sel = r.select(row["method"], row["step"])
