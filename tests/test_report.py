@@ -537,3 +537,27 @@ def test_section0_sentences_are_true(tmp_path, lang):
         half_ulp = mpmath.mpf(2) ** -53
         assert _nome_error(limit) <= half_ulp < _nome_error(limit + (mpmath.pi - limit) / 2)
         assert _nome_error(mpmath.pi - mpmath.mpf(f"{gap[1]}e-{gap[2]}")) <= half_ulp
+
+
+@pytest.mark.parametrize("scale", ["log", "symlog"])
+def test_plain_tick_labels_say_what_matplotlibs_say(scale):
+    """The report's plain-text log and symlog tick labels (no mathtext to lay out) name
+    the same numbers as matplotlib's own formatter, tick by tick."""
+    from matplotlib.figure import Figure
+
+    from pendulab.report.figures import power_of_ten
+
+    ax = Figure().add_subplot()
+    ax.plot([0, 1], [1e-7, 1e3] if scale == "log" else [-1e-3, 1e-3])
+    ax.set_yscale(scale, **({"linthresh": 1e-5} if scale == "symlog" else {}))
+    ticks = ax.yaxis.get_major_locator()()
+    theirs = ax.yaxis.get_major_formatter()
+    theirs.set_locs(ticks)
+    superscript = str.maketrans("0123456789-", "⁰¹²³⁴⁵⁶⁷⁸⁹⁻")
+    shown = 0
+    for x in ticks:
+        m = re.fullmatch(r"\$\\mathdefault\{(-?)(?:10\^\{(-?\d+)\}|(0))\}\$", theirs(x))
+        expected = "" if m is None else m[3] or ("−" if m[1] else "") + "10" + m[2].translate(superscript)
+        assert power_of_ten(x) == expected, x
+        shown += expected != ""
+    assert shown >= 5

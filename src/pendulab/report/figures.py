@@ -42,13 +42,18 @@ _SUPERSCRIPT = str.maketrans("0123456789-", "⁰¹²³⁴⁵⁶⁷⁸⁹⁻")
 
 
 def power_of_ten(x: float, pos: Any = None) -> str:
-    """A log axis's tick label: ``10⁻⁵`` at a power of ten, nothing between them."""
+    """A log or symlog axis's tick label: ``10⁻⁵`` (``−10⁻⁵``) at a power of ten, ``0`` at
+    zero, nothing between them: the labels of matplotlib's own formatter, as plain text."""
     import math
 
-    if not x > 0:
+    if x == 0:
+        return "0"
+    if not math.isfinite(x):
         return ""
-    e = math.log10(x)
-    return "10" + str(round(e)).translate(_SUPERSCRIPT) if abs(e - round(e)) < 1e-9 else ""
+    e = math.log10(abs(x))
+    if abs(e - round(e)) >= 1e-9:
+        return ""
+    return ("−" if x < 0 else "") + "10" + str(round(e)).translate(_SUPERSCRIPT)
 
 
 def draw(paint: Callable, path: Path, width: float = WIDTH, height: float = HEIGHT) -> str:
@@ -65,7 +70,7 @@ def draw(paint: Callable, path: Path, width: float = WIDTH, height: float = HEIG
         ax = fig.add_subplot()
         paint(ax)
         for axis in (ax.xaxis, ax.yaxis):
-            if axis.get_scale() == "log":
+            if axis.get_scale() in ("log", "symlog"):
                 axis.set_major_formatter(FuncFormatter(power_of_ten))
         fig.savefig(path, format="svg", metadata={"Date": None, "Creator": None})
     return path.name
