@@ -67,8 +67,8 @@ def report(more: tuple[str, ...], students: str, lang: str, output: str, names: 
     group_length(numbers)  # a sum with no non-zero digit fails here, before the work
     cover = None if names is None else inputs.names("names", names, len(numbers))
     # The cycle collector paused for the one report: its passes over matplotlib's many
-    # short-lived objects are about a tenth of a warm report's CPU time
-    # (benchmarks/bench_report.py), and one report's cycles (a few figures) are small.
+    # short-lived objects cost a few per cent of a warm report's CPU time, and one
+    # report's cycles (a few figures) are small.
     was = gc.isenabled()
     gc.disable()
     try:
