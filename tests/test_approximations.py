@@ -100,7 +100,12 @@ def test_plot_draws_each_formulas_errors():
     from pendulab.plots.beyond import approximation_errors as draw
 
     table = approximation_errors(np.radians([0.5, 10, 45, 90, 170]))
-    ax = draw(None, table)
+    import matplotlib.pyplot as plt
+
+    fig, given = plt.subplots()
+    ax = draw(table, given)
+    plt.close(fig)
+    assert ax is given
     assert [line.get_label().split(":")[0] for line in ax.lines[:len(table.formulas)]] == [f.name for f in table.formulas]
     rounding = 4 * np.finfo(float).eps
     for f, line in zip(table.formulas, ax.lines):

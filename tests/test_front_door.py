@@ -195,8 +195,12 @@ def test_plots_draw_without_an_axes():
     from pendulab import simulate
     from pendulab.plots import phase_portrait, time_series
 
+    import matplotlib.pyplot as plt
+
     tr = simulate(1.0, math.pi / 4, step=0.1, t_max=2.1)
+    fig = plt.figure()  # a new current figure: what an earlier test drew is not in it
     ax = time_series(tr)
+    assert ax.figure is fig
     x, y = ax.lines[0].get_data()
     assert np.array_equal(x, tr.t) and np.array_equal(y, tr.theta)  # the 22 points of Figure 3
     assert ax.get_xlabel() == "t (s)"

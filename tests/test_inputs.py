@@ -131,7 +131,7 @@ def test_output_paths(tmp_path):
     assert inputs.output_path("plot", tmp_path / "f.PNG", (".png", ".svg")) == tmp_path / "f.PNG"
     for bad, why in ((tmp_path / "f.xyz", "ending in .png or .svg"), ("", "(empty)"),
                      (tmp_path / "no" / "f.png", "existing folder"), (tmp_path, "not a folder"),
-                     (tmp_path / ("x" * 300 + ".png"), "ending in")):
+                     (tmp_path / ("x" * 300 + ".png"), "at most 255 bytes")):
         with pytest.raises(InputError) as exc:
             inputs.output_path("plot", bad, (".png", ".svg"))
         assert why in str(exc.value) or "accepts" in str(exc.value)

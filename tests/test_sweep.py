@@ -131,10 +131,15 @@ def test_cli_sweep(tmp_path, capsys):
 def test_plot_draws_one_line_per_method_and_step():
     """What sweep_errors draws: for each (method, step), the found pendulums' |cubic error|
     against the amplitude in degrees, floored at 1e-17 for the log scale."""
+    import matplotlib.pyplot as plt
+
     from pendulab.plots.beyond import sweep_errors
 
     r = sweep(np.radians([10, 90, 179.9]), [1e-2, 0.5], methods=["taylor2"])
-    ax = sweep_errors(r)
+    fig, given = plt.subplots()
+    ax = sweep_errors(r, given)
+    plt.close(fig)
+    assert ax is given
     assert [line.get_label() for line in ax.lines] == ["taylor2, h = 0.01", "taylor2, h = 0.5"]
     for line, row in zip(ax.lines, r.summary()):
         sel = r.select(row["method"], row["step"])
