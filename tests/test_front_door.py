@@ -192,10 +192,10 @@ def test_plots_draw_without_an_axes():
     import matplotlib
 
     matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
     from pendulab import simulate
     from pendulab.plots import phase_portrait, time_series
-
-    import matplotlib.pyplot as plt
 
     tr = simulate(1.0, math.pi / 4, step=0.1, t_max=2.1)
     fig = plt.figure()  # a new current figure: what an earlier test drew is not in it
