@@ -10,11 +10,17 @@ def run() -> int:
     signal.signal(signal.SIGTERM, terminate_handler)  # before the imports: they take a while
     try:
         from .cli import main
-    except KeyboardInterrupt as exc:
+
+        code = main()
+    except KeyboardInterrupt as exc:  # while the command line loaded, or just after the command
         term = isinstance(exc, Terminated)
         sys.stderr.write(f"pendulab: {'terminated' if term else 'interrupted'}\n")
-        return 143 if term else 130
-    return main()
+        code = 143 if term else 130
+    # The command is over and has said how: what is left is Python's shutdown, where a
+    # signal would end the process by that signal instead (no line, another status).
+    # Blocked from here, it stays pending until the process has exited with its status.
+    signal.pthread_sigmask(signal.SIG_BLOCK, {signal.SIGINT, signal.SIGTERM})
+    return code
 
 
 if __name__ == "__main__":  # not when a tool imports it (the docs' module walk)
