@@ -146,7 +146,8 @@ def sweep(
     if bad.any():
         v.positive("length", length[bad].flat[0])
     try:
-        alpha, length = (np.ascontiguousarray(a, dtype=float) for a in np.broadcast_arrays(alpha, length))
+        # Copies: a broadcast view handed to the kernels makes numpy warn (its writeable flag).
+        alpha, length = (np.array(a, dtype=float) for a in np.broadcast_arrays(alpha, length))
     except ValueError:
         raise InputError("lengths", f"shape {length.shape}", f"a number or an array of shape {alpha.shape}") from None
     g = v.positive("g", g)
