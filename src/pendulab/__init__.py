@@ -10,9 +10,9 @@ Plots are in :mod:`pendulab.plots`.
 """
 from __future__ import annotations
 
-from importlib import import_module
-from typing import TYPE_CHECKING, Any
+from typing import TYPE_CHECKING
 
+from ._extras import lazy
 from ._version import __version__
 from .errors import InputError, MissingExtraError, NumericalError, PendulabError
 
@@ -65,14 +65,4 @@ __all__ = [
     "small_angle_period",
 ]
 
-
-def __getattr__(name: str) -> Any:
-    if name in _WHERE:
-        value = getattr(import_module(f"{__name__}.{_WHERE[name]}"), name)
-        globals()[name] = value
-        return value
-    raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
-
-
-def __dir__() -> list[str]:
-    return sorted(set(globals()) | set(__all__))
+__getattr__, __dir__ = lazy(__name__, _WHERE, __all__)

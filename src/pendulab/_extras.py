@@ -1,4 +1,5 @@
-"""Optional dependencies: import one, or say in one line which extra installs it.
+"""Optional dependencies: import one, or say in one line which extra installs it; and a
+package's names loaded on first use (:func:`lazy`).
 
 The core (``pip install pendulab``) computes periods and simulations with numpy, scipy,
 mpmath, numba and click; the rest comes with the extras of ``pyproject.toml``.
@@ -8,7 +9,9 @@ from __future__ import annotations
 import importlib
 import importlib.util
 import sys
+from collections.abc import Callable
 from types import ModuleType
+from typing import Any
 
 from .errors import MissingExtraError
 
@@ -56,3 +59,21 @@ def _absent(package: str) -> bool:
     if package in sys.modules:
         return sys.modules[package] is None
     return importlib.util.find_spec(package) is None
+
+
+def lazy(package: str, where: dict[str, str], names: list[str]) -> tuple[Callable[[str], Any], Callable[[], list[str]]]:
+    """A package's ``__getattr__`` and ``__dir__`` (PEP 562) that import ``where[name]``, the
+    submodule defining ``name``, on first use and keep the value in the package's namespace."""
+    namespace = vars(sys.modules[package])
+
+    def getattr_(name: str) -> Any:
+        if name in where:
+            value = getattr(importlib.import_module(f"{package}.{where[name]}"), name)
+            namespace[name] = value
+            return value
+        raise AttributeError(f"module {package!r} has no attribute {name!r}")
+
+    def dir_() -> list[str]:
+        return sorted(set(namespace) | set(names))
+
+    return getattr_, dir_

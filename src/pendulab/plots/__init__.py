@@ -11,8 +11,9 @@ The functions are importable from here: ``from pendulab.plots import time_series
 """
 from __future__ import annotations
 
-from importlib import import_module
-from typing import TYPE_CHECKING, Any
+from typing import TYPE_CHECKING
+
+from .._extras import lazy
 
 if TYPE_CHECKING:
     from .beyond import approximation_errors, sweep_errors
@@ -42,14 +43,4 @@ _WHERE = {
     "time_series": "simulation",
 }
 
-
-def __getattr__(name: str) -> Any:
-    if name in _WHERE:
-        value = getattr(import_module(f"{__name__}.{_WHERE[name]}"), name)
-        globals()[name] = value
-        return value
-    raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
-
-
-def __dir__() -> list[str]:
-    return sorted(set(globals()) | set(__all__))
+__getattr__, __dir__ = lazy(__name__, _WHERE, __all__)
