@@ -8,6 +8,7 @@ many pendulums one after the other on one core (as a plain C program would).
 from __future__ import annotations
 
 import ctypes
+import resource
 import subprocess
 import tempfile
 import time
@@ -61,6 +62,16 @@ def build_c() -> ctypes.CDLL:
 
 def ptr(a: np.ndarray, kind=ctypes.c_double):
     return a.ctypes.data_as(ctypes.POINTER(kind))
+
+
+def run(cmd: list[str], env: dict | None = None) -> tuple[float, float]:
+    """Wall time and CPU time (user + sys) of one run of ``cmd``, s."""
+    before = resource.getrusage(resource.RUSAGE_CHILDREN)
+    t = time.perf_counter()
+    subprocess.run(cmd, check=True, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL, env=env)
+    elapsed = time.perf_counter() - t
+    after = resource.getrusage(resource.RUSAGE_CHILDREN)
+    return elapsed, (after.ru_utime - before.ru_utime) + (after.ru_stime - before.ru_stime)
 
 
 def side_by_side(fns: dict[str, Callable[[], object]], repeat: int = 5) -> dict[str, float]:

@@ -16,11 +16,11 @@ from __future__ import annotations
 
 import gc
 import os
-import resource
-import subprocess
 import sys
 import tempfile
 import time
+
+from _peers import run
 
 PY = sys.executable
 EXAMPLE = (262, 407, 634)
@@ -30,27 +30,17 @@ EXAMPLE = (262, 407, 634)
 ENV = {k: v for k, v in os.environ.items() if k != "PYTHONDONTWRITEBYTECODE"}
 
 
-def run(cmd: list[str]) -> tuple[float, float]:
-    """Wall time and CPU time (user + sys) of one run of ``cmd``, s."""
-    before = resource.getrusage(resource.RUSAGE_CHILDREN)
-    t = time.perf_counter()
-    subprocess.run(cmd, check=True, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL, env=ENV)
-    elapsed = time.perf_counter() - t
-    after = resource.getrusage(resource.RUSAGE_CHILDREN)
-    return elapsed, (after.ru_utime - before.ru_utime) + (after.ru_stime - before.ru_stime)
-
-
 def report_rows(repeat: int = 5) -> list[dict]:
     with tempfile.TemporaryDirectory(prefix="pendulab-bench-report-") as out:
         cmds = {
             "report": [PY, "-m", "pendulab", "report", "--output", os.path.join(out, "report.pdf")],
             "floor": [PY, "-c", "import numpy, matplotlib.pyplot, typst"],
         }
-        run(cmds["report"])  # fills the caches (bytecode, the OS's files, matplotlib's fonts): the warm report
+        run(cmds["report"], ENV)  # fills the caches (bytecode, the OS's files, matplotlib's fonts): the warm report
         best = {k: [float("inf"), float("inf")] for k in cmds}
         for _ in range(repeat):  # taking turns, best of each
             for k, c in cmds.items():
-                wall, cpu = run(c)
+                wall, cpu = run(c, ENV)
                 best[k] = [min(best[k][0], wall), min(best[k][1], cpu)]
     peer = "import numpy, mpl.pyplot, typst"
     return [

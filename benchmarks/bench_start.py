@@ -18,27 +18,16 @@ from __future__ import annotations
 
 import importlib.util
 import os
-import resource
-import subprocess
 import sys
 import tempfile
-import time
+
+from _peers import run
 
 PY = sys.executable
 
 
 def wall(cmd: list[str], env: dict | None = None) -> float:
     return run(cmd, env)[0]
-
-
-def run(cmd: list[str], env: dict | None = None) -> tuple[float, float]:
-    """Wall time and CPU time (user + sys) of one run of ``cmd``, s."""
-    before = resource.getrusage(resource.RUSAGE_CHILDREN)
-    t = time.perf_counter()
-    subprocess.run(cmd, check=True, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL, env=env)
-    elapsed = time.perf_counter() - t
-    after = resource.getrusage(resource.RUSAGE_CHILDREN)
-    return elapsed, (after.ru_utime - before.ru_utime) + (after.ru_stime - before.ru_stime)
 
 
 def period_row(repeat: int = 7) -> dict:
