@@ -196,3 +196,34 @@ def test_sigterm_during_report_leaves_no_temporary_folder(tmp_path):
             assert out.read_bytes() == b"old report"
         assert sorted(p.name for p in tmp_path.iterdir()) == ["report.pdf", "tmp"]
         out.write_bytes(b"old report")
+
+
+@pytest.mark.parametrize("sig", [signal.SIGINT, signal.SIGTERM])
+def test_a_signal_between_the_key_and_its_class_file_waits_for_both(tmp_path, sig):
+    """Ctrl+C (or SIGTERM) that comes after key.csv has been renamed into place and before
+    key-class.csv has: a real signal to a real ``pendulab key``, sent from inside the first
+    rename. The pair is written as one, so the run ends with its one line and 130 (143)
+    after both files are new; never a new key beside the old class file."""
+    groups = tmp_path / "groups.txt"
+    groups.write_text("262 407 634\n")
+    out, side = tmp_path / "key.csv", tmp_path / "key-class.csv"
+    out.write_text("old key\n")
+    side.write_text("old class\n")
+    code = (
+        "import os, signal, sys\n"
+        "real = os.replace\n"
+        "def replace(src, dst):\n"
+        "    real(src, dst)\n"
+        "    if os.path.basename(dst) == 'key.csv':\n"
+        f"        os.kill(os.getpid(), {int(sig)})\n"
+        "os.replace = replace\n"
+        f"sys.argv = ['pendulab', 'key', '--groups', {str(groups)!r}, '--output', {str(out)!r}]\n"
+        "from pendulab.__main__ import run\n"
+        "sys.exit(run())\n"
+    )
+    res = subprocess.run([sys.executable, "-c", code], cwd=tmp_path, capture_output=True, text=True, timeout=300,
+                         env={**os.environ, "TMPDIR": str(tmp_path)})
+    word, status = ("interrupted", 130) if sig == signal.SIGINT else ("terminated", 143)
+    assert (res.returncode, res.stderr.splitlines()) == (status, [f"pendulab key: {word}"]), res.stderr
+    assert out.read_text().startswith("line,students") and side.read_text().startswith("problem,answer,value")
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["groups.txt", "key-class.csv", "key.csv"]

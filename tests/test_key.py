@@ -21,6 +21,7 @@ import plain_pendulum as plain
 from pendulab.cli import main
 from pendulab.errors import InputError
 from pendulab.key import answer_key, parse_entries, parse_groups, tolerance
+from pendulab.period import FIXED_ITERATIONS_ULPS
 from reference import G
 
 GROUPS = [(262, 407, 634), (99999, 1), (81234, 90876), (11111,), (98765, 43210, 55555)]
@@ -323,3 +324,74 @@ def test_the_coursework_programs_reach_the_class_wide_tolerances(key):
         assert mine["estimate"] == pytest.approx(s_n, rel=tolerance("5 S_n for every n").value), n
         assert mine["error"] == pytest.approx(err, rel=tolerance("5 errors and rates").value), n
         assert mine["rate"] == (None if rate is None else pytest.approx(rate, rel=tolerance("5 errors and rates").value))
+
+
+def test_tolerances_are_codes_and_their_words_come_from_both_catalogues(key, groups_file, tmp_path, capsys):
+    """The key holds each tolerance as codes (kind, value, unit, reason); the words are the
+    catalogues', in both languages, and every output shows the same words."""
+    from pendulab.key import TOLERANCES
+    from pendulab.report.key import agreement, document, why
+
+    assert key.to_dict()["tolerances"] == [t.to_dict() for t in TOLERANCES]
+    kinds = {"exactly", "relative", "absolute", "contains", "any"}
+    for t in TOLERANCES:
+        assert t.kind in kinds and t.reason.isidentifier()
+        assert (t.value is None) == (t.kind in {"exactly", "contains", "any"}), t
+        for lang in ("en", "pt"):
+            words = agreement(t, lang), why(t, lang)
+            assert all(w and "{" not in w for w in words), (t, lang, words)
+        if t.value is not None:  # the number and its unit, as the rule reads
+            assert agreement(t) == f"{t.kind} {t.value:g}{' ' + t.unit if t.unit else ''}"
+    assert agreement(tolerance("2 interval [a, b]")) == "contains the key's alpha"
+    assert why(tolerance("3(b) T^ (8), 7 iterations")).startswith(f"{FIXED_ITERATIONS_ULPS} ulp")
+    doc = document(key)
+    assert [(d["answer"], d["agreement"], d["why"]) for d in doc["tolerances"]] == [
+        (t.answer, agreement(t), why(t)) for t in TOLERANCES]
+    # The outputs: JSON on stdout and in a file, the class CSV beside the key.
+    assert main(["key", "--groups", str(groups_file), "--json"]) == 0
+    assert json.loads(capsys.readouterr().out)["tolerances"] == doc["tolerances"]
+    out = tmp_path / "key.csv"
+    assert main(["key", "--groups", str(groups_file), "--output", str(out)]) == 0
+    rows = [r for r in csv.reader(io.StringIO((tmp_path / "key-class.csv").read_text())) if r[0] == "tolerance"]
+    assert rows == [["tolerance", t.answer, f"{agreement(t)} ({why(t)})"] for t in TOLERANCES]
+
+
+@pytest.mark.parametrize("old_class", [True, False])
+def test_a_failure_between_the_two_renames_leaves_the_old_pair(key, tmp_path, monkeypatch, old_class):
+    """key.csv and key-class.csv are written as one: a rename that fails after the first
+    one puts the old key back (or removes the new one where there was none) and leaves no
+    temporary file."""
+    import os
+
+    from pendulab import _atomic
+    from pendulab.report.key import write_key
+
+    out, side = tmp_path / "key.csv", tmp_path / "key-class.csv"
+    out.write_text("old key\n")
+    if old_class:
+        side.write_text("old class\n")
+    calls = []
+    real = os.replace
+
+    def replace(src, dst):
+        calls.append(dst)
+        if len(calls) == 2:  # the first file is in place, the second not
+            assert out.read_text().startswith("line,students")
+            raise OSError(28, "No space left on device")
+        real(src, dst)
+
+    monkeypatch.setattr(_atomic.os, "replace", replace)
+    with pytest.raises(OSError):
+        write_key(key, out)
+    assert calls[:2] == [out, side]
+    assert out.read_text() == "old key\n"
+    assert side.read_text() == "old class\n" if old_class else not side.exists()
+    assert sorted(p.name for p in tmp_path.iterdir()) == sorted(["key.csv"] + ["key-class.csv"] * old_class)
+    out.unlink()  # no old key at all: the new one is removed again, no stale partner
+    calls.clear()
+    with pytest.raises(OSError):
+        write_key(key, out)
+    assert not out.exists() and sorted(p.name for p in tmp_path.iterdir()) == ["key-class.csv"] * old_class
+    monkeypatch.setattr(_atomic.os, "replace", real)
+    assert write_key(key, out) == [out, side]  # and a write that succeeds writes both
+    assert out.read_text().startswith("line,students") and side.read_text().startswith("problem,answer,value")

@@ -156,3 +156,23 @@ def test_invariants(length, a1, a2):
     assert agm_period(length, lo) <= agm_period(length, hi)
     assert agm_period(length, lo) >= small_angle_period(length) * (1 - 1e-15)
     assert agm_period(4 * length, hi) == pytest.approx(2 * agm_period(length, hi), rel=1e-15)
+
+
+def test_signatures_name_their_types_and_exact_inputs_are_their_doubles():
+    """help() shows what the public functions take and give (no ``Any``), and an ``Exact``
+    (a number as written) is taken as its double, as the signatures say."""
+    import inspect
+
+    from pendulab.inputs import parse_angle, parse_number
+    from pendulab.period import agm_mean
+
+    for f in (agm_period, small_angle_period, agm_mean):
+        sig = inspect.signature(f)
+        shown = [str(p.annotation) for p in sig.parameters.values()] + [str(sig.return_annotation)]
+        assert not any("Any" in s for s in shown), (f.__name__, shown)
+        assert "Exact" in shown[0] and "ArrayLike" in shown[0] and "NDArray" in shown[-1], (f.__name__, shown)
+    length, alpha = parse_number("length", "3.5"), parse_angle("amplitude", "4pi/5")
+    assert agm_period(length, alpha) == agm_period(3.5, float(alpha))
+    assert agm_period(length, alpha, iterations=7) == agm_period(3.5, float(alpha), iterations=7)
+    assert small_angle_period(length) == small_angle_period(3.5)
+    assert agm_mean(parse_number("b0", "0.5")) == agm_mean(0.5) == pytest.approx(float(mpmath.agm(1, 0.5)), rel=1e-15)

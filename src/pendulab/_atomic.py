@@ -14,9 +14,10 @@ import errno
 import os
 import secrets
 import stat
-from collections.abc import Iterator
+from collections.abc import Iterator, Sequence
 from pathlib import Path
 
+from ._interrupt import deferred
 from .errors import InputError, shown
 
 
@@ -93,6 +94,25 @@ def _read_only(p: Path, st: os.stat_result) -> bool:
     return False
 
 
+def _stage(target: Path) -> Path:
+    """A new temporary file beside ``target`` that will take its place: with the permission
+    bits of the file it replaces, or those of a new file under the umask."""
+    try:
+        mode: int | None = stat.S_IMODE(os.stat(target).st_mode)
+    except FileNotFoundError:
+        mode = None
+    tmp = _temp_name(target)
+    # 0o666 less the umask, as open() gives a new file (read atomically, unlike os.umask()).
+    os.close(os.open(tmp, os.O_WRONLY | os.O_CREAT | os.O_EXCL, 0o666 if mode is None else 0o600))
+    if mode is not None:
+        try:
+            os.chmod(tmp, mode)
+        except BaseException:
+            os.unlink(tmp)
+            raise
+    return tmp
+
+
 @contextlib.contextmanager
 def atomic_path(path: str | os.PathLike) -> Iterator[Path]:
     """Yield a temporary path beside ``path``; on success rename it onto ``path``.
@@ -101,22 +121,60 @@ def atomic_path(path: str | os.PathLike) -> Iterator[Path]:
     new file under the umask; a symbolic link's target is replaced (the link stays).
     """
     target = _real(path)
-    try:
-        mode: int | None = stat.S_IMODE(os.stat(target).st_mode)
-    except FileNotFoundError:
-        mode = None
-    tmp = _temp_name(target)
-    # 0o666 less the umask, as open() gives a new file (read atomically, unlike os.umask()).
-    os.close(os.open(tmp, os.O_WRONLY | os.O_CREAT | os.O_EXCL, 0o666 if mode is None else 0o600))
+    tmp = _stage(target)
     try:
         yield tmp
-        if mode is not None:
-            os.chmod(tmp, mode)
         os.replace(tmp, target)
     except BaseException:
         with contextlib.suppress(FileNotFoundError):
             os.unlink(tmp)
         raise
+
+
+def write_together(files: Sequence[tuple[str | os.PathLike, bytes]]) -> None:
+    """Write several files as one: afterwards every file holds its new bytes, or (on an
+    error) every file is as it was, and a file that did not exist is still absent.
+
+    Every file is first written in full to a temporary file beside it; only then are they
+    renamed onto their targets, one after the other, with SIGINT and SIGTERM deferred
+    (:func:`pendulab._interrupt.deferred`) so that Ctrl+C or a ``kill`` waits for the last
+    rename. A rename that fails undoes those done before it: the old bytes are written back
+    (atomically), a new file is removed. What no program can prevent remains: a power cut
+    or SIGKILL between two renames (there is no atomic rename of two files).
+    """
+    staged: list[tuple[Path, Path]] = []
+    try:
+        for path, data in files:
+            target = _real(path)
+            staged.append((_stage(target), target))
+            staged[-1][0].write_bytes(data)
+        before = [_old_bytes(target) for _, target in staged]
+        with deferred():
+            done = 0
+            try:
+                for tmp, target in staged:
+                    os.replace(tmp, target)
+                    done += 1
+            except BaseException:
+                for (_, target), old in reversed(list(zip(staged[:done], before))):
+                    if old is None:
+                        with contextlib.suppress(FileNotFoundError):
+                            os.unlink(target)
+                    else:
+                        write_bytes(target, old)
+                raise
+    finally:
+        for tmp, _ in staged:
+            with contextlib.suppress(FileNotFoundError):
+                os.unlink(tmp)
+
+
+def _old_bytes(target: Path) -> bytes | None:
+    """What ``target`` holds now (``None``: no such file), to restore it if a later rename fails."""
+    try:
+        return target.read_bytes()
+    except FileNotFoundError:
+        return None
 
 
 def check_not_input(name: str, path: str | os.PathLike, source_name: str, source: str | os.PathLike) -> None:

@@ -14,7 +14,7 @@ from collections.abc import Sequence
 from dataclasses import dataclass
 from decimal import Decimal
 from pathlib import Path
-from typing import Any
+from typing import Any, Literal
 
 from . import inputs
 from .errors import InputError
@@ -194,52 +194,61 @@ def class_path(output: str | os.PathLike) -> Path:
     return p.with_name(f"{p.stem}-class{p.suffix}")
 
 
+#: How an answer is compared with the key: equal (``exactly``), within a ``relative`` or an
+#: ``absolute`` difference of ``value``, an interval that ``contains`` the key's value, or
+#: ``any`` value (rounding noise). The words are the catalogues' ``key.kind.*``.
+Kind = Literal["exactly", "relative", "absolute", "contains", "any"]
+
+
 @dataclass(frozen=True)
 class Tolerance:
-    """The agreement with the key that a correct program reaches for one answer."""
+    """The agreement with the key that a correct program reaches for one answer.
+
+    ``kind`` and ``value`` (with its ``unit``) are the rule; ``reason`` is the code of why a
+    correct program reaches it (the catalogues' ``key.reason.*``, filled with ``ulps``).
+    """
 
     answer: str
-    kind: str  # "exactly", "relative", "absolute" or a phrase (see agreement)
+    kind: Kind
     value: float | None
     unit: str
-    why: str
+    reason: str
 
-    @property
-    def agreement(self) -> str:
-        if self.value is None:
-            return self.kind
-        return f"{self.kind} {self.value:g}{' ' + self.unit if self.unit else ''}"
+    def to_dict(self) -> dict[str, Any]:
+        return {"answer": self.answer, "kind": self.kind, "value": self.value, "unit": self.unit,
+                "reason": self.reason}
 
 
 #: What a correct program must reach for each answer, so that a teacher marks without
 #: guessing. The 3(c)-(d) figures are met by an independent plain-Python program of the
 #: coursework's formulas (tests/test_key.py checks it against them).
 TOLERANCES: tuple[Tolerance, ...] = (
-    Tolerance("1(b) g", "relative", 1e-14, "", "one formula, a few roundings"),
-    Tolerance("1(b) |e_g|, |e_g|/|g| and the corner extremes", "relative", 1e-12, "", "sums of a few products"),
-    Tolerance("1(b) significant digits", "exactly", None, "", "an integer"),
-    Tolerance("2 interval [a, b]", "contains the key's alpha", None, "", "any interval meeting the four conditions"),
-    Tolerance("2 alpha", "absolute", 1e-15, "rad", "a few ulp: the last Newton step ends at the rounding level"),
-    Tolerance("2 q_k for k <= k_max", "relative", 1e-2, "", "the bound on q_k's rounding error that defines k_max"),
-    Tolerance("2 q_k for k > k_max", "any value", None, "", "rounding noise"),
-    Tolerance("3(b) sum, its non-zero digits, l", "exactly", None, "", "integers and a 10-decimal text"),
-    Tolerance("3(b) T^ (8), 7 iterations", "relative", 1e-15, "",
-              f"{FIXED_ITERATIONS_ULPS} ulp: the order of the operations of (7)"),
-    Tolerance("3(b) h = 0.2: outcome, j, bracket, T^ inside", "exactly", None, "", "integers j; t_j = j h"),
-    Tolerance("3(c) j and bracket for each h", "exactly", None, "", "integers j; t_j = j h"),
-    Tolerance("3(c) T linear, T = p(0) and their errors", "absolute", 1e-11, "s", "rounding in up to 10^5 Taylor steps"),
-    Tolerance("3(c) observed orders", "absolute", 0.01, "", "logarithms of the errors above"),
-    Tolerance("3(d) nodes x_k = z_(2,j-1+k)", "relative", 1e-11, "", "the same Taylor steps"),
-    Tolerance("3(d) Newton coefficients", "relative", 1e-9, "", "divided differences amplify rounding"),
-    Tolerance("3(d) error estimate", "absolute", 1e-13, "s", "a difference of nearly equal numbers"),
-    Tolerance("3(d) negligible?", "exactly", None, "", "yes or no"),
-    Tolerance("4 normal equations A, r (6 decimals)", "exactly", None, "", "rounded half away from zero to 6 decimals"),
-    Tolerance("4 coefficients", "absolute", 1e-10, "", "any stable solver of the same rounded system"),
-    Tolerance("4 SSD E(c)", "relative", 1e-8, "", "a sum of squares of small deviations"),
-    Tolerance("4 max deviation", "absolute", 1e-10, "", "the deviations at the data points"),
-    Tolerance("5 S_n for every n", "relative", 1e-12, "", "sums of up to 3 x 10^5 terms"),
-    Tolerance("5 errors and rates", "relative", 1e-6, "", "differences from T^ and logarithms"),
+    Tolerance("1(b) g", "relative", 1e-14, "", "few_roundings"),
+    Tolerance("1(b) |e_g|, |e_g|/|g| and the corner extremes", "relative", 1e-12, "", "few_products"),
+    Tolerance("1(b) significant digits", "exactly", None, "", "integer"),
+    Tolerance("2 interval [a, b]", "contains", None, "", "any_interval"),
+    Tolerance("2 alpha", "absolute", 1e-15, "rad", "newton_rounding"),
+    Tolerance("2 q_k for k <= k_max", "relative", 1e-2, "", "q_rounding_bound"),
+    Tolerance("2 q_k for k > k_max", "any", None, "", "rounding_noise"),
+    Tolerance("3(b) sum, its non-zero digits, l", "exactly", None, "", "length_rule"),
+    Tolerance("3(b) T^ (8), 7 iterations", "relative", 1e-15, "", "agm_order"),
+    Tolerance("3(b) h = 0.2: outcome, j, bracket, T^ inside", "exactly", None, "", "grid_times"),
+    Tolerance("3(c) j and bracket for each h", "exactly", None, "", "grid_times"),
+    Tolerance("3(c) T linear, T = p(0) and their errors", "absolute", 1e-11, "s", "taylor_rounding"),
+    Tolerance("3(c) observed orders", "absolute", 0.01, "", "logarithms"),
+    Tolerance("3(d) nodes x_k = z_(2,j-1+k)", "relative", 1e-11, "", "same_taylor_steps"),
+    Tolerance("3(d) Newton coefficients", "relative", 1e-9, "", "divided_differences"),
+    Tolerance("3(d) error estimate", "absolute", 1e-13, "s", "cancellation"),
+    Tolerance("3(d) negligible?", "exactly", None, "", "yes_no"),
+    Tolerance("4 normal equations A, r (6 decimals)", "exactly", None, "", "six_decimals"),
+    Tolerance("4 coefficients", "absolute", 1e-10, "", "stable_solver"),
+    Tolerance("4 SSD E(c)", "relative", 1e-8, "", "sum_of_squares"),
+    Tolerance("4 max deviation", "absolute", 1e-10, "", "data_deviations"),
+    Tolerance("5 S_n for every n", "relative", 1e-12, "", "long_sums"),
+    Tolerance("5 errors and rates", "relative", 1e-6, "", "differences_and_logarithms"),
 )
+#: The number the reasons' words are filled with (``agm_order``: the bound on ``T^``'s rounding).
+REASON_VALUES = {"ulps": FIXED_ITERATIONS_ULPS}
 
 
 def tolerance(answer: str) -> Tolerance:
@@ -255,8 +264,9 @@ class AnswerKey:
     groups: list[dict[str, Any]]
 
     def to_dict(self) -> dict[str, Any]:
-        return {"common": self.common, "groups": self.groups,
-                "tolerances": [{"answer": t.answer, "agreement": t.agreement, "why": t.why} for t in TOLERANCES]}
+        """The key as plain data: the answers and the marking tolerances (codes; the words are
+        the presenters', :func:`pendulab.report.key.document`)."""
+        return {"common": self.common, "groups": self.groups, "tolerances": [t.to_dict() for t in TOLERANCES]}
 
 
 def _f(x: float | None) -> float | None:

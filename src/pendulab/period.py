@@ -15,11 +15,15 @@ from __future__ import annotations
 import math as _math
 import numbers as _numbers
 from fractions import Fraction
-from typing import Any
+from typing import TYPE_CHECKING, Any, SupportsFloat, TypeGuard, overload
 
 from . import _validate as _v
 from .cases import G_EXACT, G
 from .exact import Exact, arb_precision, below_pi
+
+if TYPE_CHECKING:  # numpy loads only where arrays are handled
+    import numpy as np
+    from numpy.typing import ArrayLike, NDArray
 
 __all__ = [
     "FIXED_ITERATIONS_ULPS",
@@ -59,7 +63,7 @@ _RTOL = 4 * 2.0**-52  # 4 eps
 FIXED_ITERATIONS_ULPS = 20
 
 
-def _is_scalar(x: Any) -> bool:
+def _is_scalar(x: Any) -> TypeGuard[SupportsFloat]:
     if isinstance(x, _numbers.Real):
         return True
     import numpy as np
@@ -67,8 +71,25 @@ def _is_scalar(x: Any) -> bool:
     return bool(np.ndim(x) == 0)
 
 
-def small_angle_period(length: Any, g: Any = G) -> Any:
-    """Small-angle period ``2 pi sqrt(l/g)`` (problem 1). Vectorised over ``length``."""
+@overload
+def small_angle_period(length: float | Exact, g: float | Exact = G) -> float: ...
+@overload
+def small_angle_period(length: ArrayLike, g: float | Exact = G) -> NDArray[np.float64]: ...
+def small_angle_period(length: float | Exact | ArrayLike, g: float | Exact = G) -> float | NDArray[np.float64]:
+    """Small-angle period ``2 pi sqrt(l/g)`` (problem 1). Vectorised over ``length``.
+
+    Parameters
+    ----------
+    length : float, Exact or array_like
+        Pendulum length ``l`` > 0, m (an :class:`~pendulab.exact.Exact` is taken as its double).
+    g : float or Exact
+        Gravitational acceleration, m/s^2.
+
+    Returns
+    -------
+    float or ndarray
+        A float for a scalar ``length``, an array of its shape otherwise.
+    """
     if _is_scalar(length):
         return _v.period_scale(_v.positive("length", length), _v.positive("g", g))
     import numpy as np
@@ -89,12 +110,16 @@ def small_angle_period(length: Any, g: Any = G) -> Any:
     return 2 * np.pi * (np.sqrt(lengths) / _math.sqrt(g))
 
 
-def agm_mean(b0: Any, iterations: int | None = None) -> Any:
+@overload
+def agm_mean(b0: float | Exact, iterations: int | None = None) -> float: ...
+@overload
+def agm_mean(b0: ArrayLike, iterations: int | None = None) -> NDArray[np.float64]: ...
+def agm_mean(b0: float | Exact | ArrayLike, iterations: int | None = None) -> float | NDArray[np.float64]:
     """The AGM value ``v`` of (7)-(8) started from ``(a0, b0) = (1, b0)``.
 
     Parameters
     ----------
-    b0 : float or array_like, 0 < b0 <= 1
+    b0 : float, Exact or array_like, 0 < b0 <= 1
         ``cos(alpha/2)``.
     iterations : int, optional
         ``None`` iterates to convergence in double precision; ``7`` is the coursework's
@@ -147,16 +172,23 @@ def nearest_period(length: float, amplitude: float, g: float) -> float:
         prec *= 2  # pragma: no cover - a period within 2^-112 of a rounding boundary
 
 
-def agm_period(length: Any, amplitude: Any, g: Any = G, iterations: int | None = None) -> Any:
+@overload
+def agm_period(length: float | Exact, amplitude: float | Exact, g: float | Exact = G, iterations: int | None = None) -> float: ...
+@overload
+def agm_period(length: ArrayLike, amplitude: ArrayLike, g: float | Exact = G,
+               iterations: int | None = None) -> NDArray[np.float64]: ...
+def agm_period(length: float | Exact | ArrayLike, amplitude: float | Exact | ArrayLike, g: float | Exact = G,
+               iterations: int | None = None) -> float | NDArray[np.float64]:
     """Exact period by the arithmetic-geometric mean, equations (7)-(8).
 
     Parameters
     ----------
-    length : float or array_like
-        Pendulum length ``l`` > 0, m.
-    amplitude : float or array_like
+    length : float, Exact or array_like
+        Pendulum length ``l`` > 0, m. An :class:`~pendulab.exact.Exact` is taken as its
+        double (:func:`period_double` computes from the number as written).
+    amplitude : float, Exact or array_like
         Release angle ``alpha`` in ``[0, pi)``, rad. Broadcast against ``length``.
-    g : float
+    g : float or Exact
         Gravitational acceleration, m/s^2.
     iterations : int, optional
         ``None`` (default): the AGM to convergence, and the result is the double nearest
@@ -168,7 +200,8 @@ def agm_period(length: Any, amplitude: Any, g: Any = G, iterations: int | None =
     Returns
     -------
     float or ndarray
-        ``T^ = 2 pi sqrt(l/g) / v`` (8).
+        ``T^ = 2 pi sqrt(l/g) / v`` (8): a float for scalar inputs, else an array of their
+        broadcast shape.
 
     Notes
     -----
@@ -184,13 +217,13 @@ def agm_period(length: Any, amplitude: Any, g: Any = G, iterations: int | None =
         iterations = _v.integer("iterations", iterations, 0, 1000)
     exact_array = iterations is None and not (_is_scalar(amplitude) and _is_scalar(length))
     # The compiled kernel checks an array of amplitudes itself (in the same pass).
-    alpha = amplitude if exact_array else _v.amplitudes("amplitude", amplitude)
+    alpha: Any = amplitude if exact_array else _v.amplitudes("amplitude", amplitude)
     scalar = not exact_array and _is_scalar(alpha) and _is_scalar(length)
     if scalar and iterations is not None:
         return small_angle_period(length, g) / agm_mean(_math.cos(0.5 * alpha), iterations)
     if scalar:
         small_angle_period(length, g)  # refuses a length or g whose period overflows
-        return nearest_period(float(length), alpha, float(g))
+        return nearest_period(_v.positive("length", length), alpha, float(g))
     import numpy as np
 
     t0 = small_angle_period(length, g)  # checks the lengths and g

@@ -48,7 +48,9 @@ def key(groups_file: str, output: str | None, as_json: bool) -> None:
         also = f" and {answer.class_path(output)}" if fmt == "csv" else ""
         click.echo(f"pendulab: wrote {output}{also} ({len(groups)} groups)", err=True)
     if as_json:
-        emit_json(k.to_dict())
+        from ..report.key import document
+
+        emit_json(document(k))
     elif output is None:
         _table(k)
 

@@ -13,11 +13,31 @@ import tempfile
 from pathlib import Path
 from typing import Any
 
-from .._atomic import check_writable, write_bytes
+from .._atomic import check_writable, write_bytes, write_together
 from ..errors import InputError
-from ..key import FORMATS, TOLERANCES, AnswerKey, class_path, output_format
+from ..key import FORMATS, REASON_VALUES, TOLERANCES, AnswerKey, Tolerance, class_path, output_format
+from ..words import sentence
 from .markup import fixed, num, sci
 from .typeset import needs_system_fonts, typeset
+
+
+def agreement(t: Tolerance, lang: str = "en") -> str:
+    """The rule of a tolerance in words: ``relative 1e-14``, ``absolute 1e-11 s``, ``exactly``."""
+    value = "" if t.value is None else f"{t.value:g}{' ' + t.unit if t.unit else ''}"
+    return sentence(f"key.kind.{t.kind}", lang, value=value)
+
+
+def why(t: Tolerance, lang: str = "en") -> str:
+    """Why a correct program reaches the tolerance, in words."""
+    return sentence(f"key.reason.{t.reason}", lang, **REASON_VALUES)
+
+
+def document(key: AnswerKey, lang: str = "en") -> dict[str, Any]:
+    """The key's JSON document: :meth:`AnswerKey.to_dict`, each tolerance with its words
+    (``agreement``, ``why``) beside its codes."""
+    d = key.to_dict()
+    d["tolerances"] = [t.to_dict() | {"agreement": agreement(t, lang), "why": why(t, lang)} for t in TOLERANCES]
+    return d
 
 
 def _cell(x: Any) -> Any:
@@ -123,7 +143,7 @@ def _class_csv(key: AnswerKey) -> str:
     for problem, answer, value in class_rows(key):
         w.writerow([problem, answer, _cell(value)])
     for t in TOLERANCES:
-        w.writerow(["tolerance", t.answer, f"{t.agreement} ({t.why})"])
+        w.writerow(["tolerance", t.answer, f"{agreement(t)} ({why(t)})"])
     return buf.getvalue()
 
 
@@ -181,7 +201,7 @@ def class_blocks(key: AnswerKey) -> list[dict[str, Any]]:
         f"$S_10$: {num(p5['composite10'], 15)}."))
     blocks.append(_block("Marking tolerances: the agreement a correct program reaches",
                          ["answer", "agreement with this key", "why"],
-                         [[t.answer, t.agreement, t.why] for t in TOLERANCES], plain=True))
+                         [[t.answer, agreement(t), why(t)] for t in TOLERANCES], plain=True))
     return blocks
 
 
@@ -211,7 +231,7 @@ def _pdf(key: AnswerKey) -> bytes:
 def render(key: AnswerKey, fmt: str) -> bytes:
     """The key as ``csv`` (one row per group), ``json`` or ``pdf`` bytes."""
     if fmt == "json":
-        return (json.dumps(key.to_dict(), indent=1, allow_nan=False) + "\n").encode()
+        return (json.dumps(document(key), indent=1, allow_nan=False) + "\n").encode()
     if fmt == "csv":
         return _csv(key).encode()
     if fmt == "pdf":
@@ -221,19 +241,17 @@ def render(key: AnswerKey, fmt: str) -> bytes:
 
 def write_key(key: AnswerKey, output: str | os.PathLike) -> list[Path]:
     """Write ``key`` atomically to ``output`` (format from its extension); a ``.csv`` also
-    gets the class-wide answers and tolerances beside it (:func:`class_path`).
+    gets the class-wide answers and tolerances beside it (:func:`class_path`), the two
+    written as one (:func:`pendulab._atomic.write_together`): never a new key beside an
+    old class file.
 
     Returns the files written.
     """
     fmt = output_format(output)
     out = check_writable("output", output)
-    written = [out]
     if fmt == "csv":
         side = class_path(out)
-        data = _class_csv(key).encode()
-        write_bytes(out, render(key, fmt))
-        write_bytes(side, data)
-        written.append(side)
-    else:
-        write_bytes(out, render(key, fmt))
-    return written
+        write_together([(out, render(key, fmt)), (side, _class_csv(key).encode())])
+        return [out, side]
+    write_bytes(out, render(key, fmt))
+    return [out]
