@@ -64,7 +64,8 @@ def _subclasses(cls):
 
 def test_to_dict_and_to_frame_of_a_trajectory(tr):
     d = tr.to_dict()
-    assert list(d) == [f.name for f in dataclasses.fields(tr)]
+    assert list(d) == [f.name for f in dataclasses.fields(tr)] + ["n_steps"]  # the fields, then derived numbers
+    assert d["n_steps"] == len(tr.t) - 1
     assert d["theta"] is tr.theta and d["method"] == "taylor2"
     df = tr.to_frame()
     assert list(df.columns) == ["t", "theta", "omega"]

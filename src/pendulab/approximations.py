@@ -177,3 +177,54 @@ def approximation_errors(amplitudes: Any = None, names: Any = None) -> Approxima
     m = agm_mean(np.cos(alpha / 2))
     errors = {f.name: f.ratio(alpha) * m - 1 for f in formulas}
     return ApproximationErrors(alpha, 1 / m, formulas, errors)
+
+
+#: The amplitudes (degrees) of the table of ``pendulab approximations``.
+TABLE_DEGREES = (1, 10, 30, 60, 90, 120, 150, 170, 179, 179.9)
+#: The error levels whose reach (the largest amplitude within them) the table gives.
+REACH_TOLERANCES = (1e-2, 1e-4, 1e-6)
+
+
+@dataclass(frozen=True, eq=False)
+class FormulaErrors(Result):
+    """One formula's row of :class:`ApproximationTable`.
+
+    Attributes
+    ----------
+    name, formula, source : str
+        The formula's name, its expression (``T0 / sqrt(cos(a/2))``) and its reference.
+    relative_errors : ndarray
+        ``T_approx/T - 1`` at the table's amplitudes.
+    max_amplitude_deg_within : dict
+        For each error level (``"0.01"``, ...), the largest amplitude (degrees) up to which
+        ``|error|`` stays within it, on a grid of 1000 amplitudes from 0.1 to 179.9 degrees
+        (:meth:`ApproximationErrors.max_amplitude_within`).
+    """
+
+    name: str
+    formula: str
+    source: str
+    relative_errors: np.ndarray
+    max_amplitude_deg_within: dict[str, float]
+
+
+@dataclass(frozen=True, eq=False)
+class ApproximationTable(Result):
+    """The relative errors of every formula at a few amplitudes, and how far each stays
+    within 1e-2, 1e-4, 1e-6 (``pendulab approximations``)."""
+
+    amplitudes_deg: tuple[float, ...]
+    formulas: tuple[FormulaErrors, ...]
+
+
+def approximation_table(fine: ApproximationErrors | None = None,
+                        degrees: tuple[float, ...] = TABLE_DEGREES,
+                        tolerances: tuple[float, ...] = REACH_TOLERANCES) -> ApproximationTable:
+    """The errors at ``degrees`` and the reach of each formula within ``tolerances``, measured
+    on ``fine`` (default: :func:`approximation_errors` over its 1000 amplitudes)."""
+    fine = approximation_errors() if fine is None else fine
+    table = approximation_errors(np.radians(degrees))
+    return ApproximationTable(tuple(degrees), tuple(
+        FormulaErrors(f.name, f.label, f.source, table.errors[f.name],
+                      {f"{t:g}": math.degrees(fine.max_amplitude_within(f.name, t)) for t in tolerances})
+        for f in table.formulas))

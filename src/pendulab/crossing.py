@@ -95,6 +95,12 @@ class PeriodEstimate(Result):
         """``|cubic - period|``: the error of the inverse-cubic estimate ``p(0)``, s (problem 3(c)-(d))."""
         return abs(self.cubic - self.period)
 
+    @property
+    def cubic_error_estimate_rounding_level(self) -> float:
+        """How far the rounding of ``t_k = k h`` alone moves ``cubic_error_estimate``
+        (``interpolation.rounding_level``): an estimate below it is rounding."""
+        return self.interpolation.rounding_level
+
 
 def default_t_max(exact_period: float, step: float, t0: float = 0.0) -> float:
     """A ``t_max`` that holds the first return with room to spare: ``t0 + 1.5 T + 4h``.
@@ -303,3 +309,68 @@ def observed_orders(steps: list[float], errors: list[float]) -> list[float | Non
         ok = e0 > 0 and e1 > 0 and h0 != h1
         out.append(math.log(e0 / e1) / math.log(h0 / h1) if ok else None)
     return out
+
+
+@dataclass(frozen=True, eq=False)
+class PeriodEstimates(Result):
+    """The period of one pendulum from simulations with several steps (problem 3(c)-(d)).
+
+    Attributes
+    ----------
+    length, amplitude, g : float
+    method : str
+    period : float
+        The AGM period (8) to convergence: every error's reference.
+    rows : tuple of PeriodEstimate
+        One per step, in the order given.
+    linear_orders, cubic_orders : tuple of float or None
+        The observed order of each row's error against the row before (None for the first).
+    """
+
+    length: float
+    amplitude: float
+    g: float
+    method: str
+    period: float
+    rows: tuple[PeriodEstimate, ...]
+    linear_orders: tuple[float | None, ...]
+    cubic_orders: tuple[float | None, ...]
+
+    def to_dict(self) -> dict[str, Any]:
+        """The fields, each row with its two observed orders (``linear_order``, ``cubic_order``)."""
+        d = super().to_dict()
+        lin, cub = d.pop("linear_orders"), d.pop("cubic_orders")
+        d["rows"] = [row | {"linear_order": lo, "cubic_order": co} for row, lo, co in zip(d["rows"], lin, cub)]
+        return d
+
+
+def estimate_periods(
+    length: float,
+    amplitude: float,
+    steps: list[float],
+    t_max: float | None = None,
+    g: float = G,
+    method: str = "taylor2",
+) -> PeriodEstimates:
+    """:func:`estimate_period` for each of ``steps``, and the observed orders of the errors.
+
+    The work of the whole list, weighed by the method's cost, is checked before the first
+    run: at most what one run may take (``MAX_STEPS`` steps of (3)), blaming the step that
+    needs the most. A step whose own run is beyond one run's limit is left to
+    :func:`estimate_period`'s message (which offers ``t_max`` too).
+    """
+    period = agm_period(length, amplitude, g)
+    work = [(default_t_max(period, h) if t_max is None else float(t_max)) / h for h in steps]
+    if all(math.isfinite(w) and w <= v.steps_for(method, MAX_STEPS) for w in work):
+        v.work_within("steps", max(zip(work, steps))[1], sum(work), method, MAX_STEPS)
+    rows = tuple(estimate_period(length, amplitude, h, t_max, 0.0, g, method) for h in steps)
+    return PeriodEstimates(
+        length=float(length),
+        amplitude=float(amplitude),
+        g=float(g),
+        method=method,
+        period=rows[0].period,
+        rows=rows,
+        linear_orders=tuple(observed_orders(list(steps), [r.linear_error for r in rows])),
+        cubic_orders=tuple(observed_orders(list(steps), [r.cubic_error for r in rows])),
+    )

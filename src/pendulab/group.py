@@ -21,17 +21,18 @@ DECIMALS = 10
 
 @dataclass(frozen=True, eq=False)
 class GroupLength(Result):
-    """The length rule's steps: numbers, their sum, the digits ``m``, and ``l``."""
+    """The length rule's steps: the student numbers, their ``sum``, its non-zero ``digits``
+    (``m``), and ``l`` to 10 decimals as written (``length_text``) and as a double (``length``)."""
 
     numbers: tuple[int, ...]
-    total: int
+    sum: int
     digits: str
-    text: str
+    length_text: str
 
     @property
     def length(self) -> float:
         """``l`` in metres (the double nearest to the 10-decimal value)."""
-        return float(self.text)
+        return float(self.length_text)
 
 
 def group_length(numbers: Iterable[int]) -> GroupLength:

@@ -316,8 +316,8 @@ def group_answers(students: Sequence[int]) -> dict[str, Any]:
         "negligible": r.interpolation_negligible,
     }
     return {
-        "students": list(r.group.numbers), "sum": r.group.total, "digits": r.group.digits,
-        "length": r.group.length, "length_text": r.group.text, "t_hat": r.t_hat,
+        "students": list(r.group.numbers), "sum": r.group.sum, "digits": r.group.digits,
+        "length": r.group.length, "length_text": r.group.length_text, "t_hat": r.t_hat,
         "plot": plot, "estimates": estimates, "interpolation": interpolation,
     }
 

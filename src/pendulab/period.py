@@ -14,12 +14,14 @@ from __future__ import annotations
 
 import math as _math
 import numbers as _numbers
+from dataclasses import dataclass
 from fractions import Fraction
 from typing import TYPE_CHECKING, Any, SupportsFloat, TypeGuard, overload
 
 from . import _validate as _v
 from .cases import G_EXACT, G
 from .exact import Exact, arb_precision, below_pi
+from .results import Result
 
 if TYPE_CHECKING:  # numpy loads only where arrays are handled
     import numpy as np
@@ -37,6 +39,7 @@ __all__ = [
     "period_digits",
     "period_double",
     "period_mp",
+    "periods",
     "small_angle_period",
 ]
 
@@ -538,3 +541,70 @@ def fixed_iterations_limit(iterations: int = 7, rtol: float = 2.0**-53) -> float
         else:
             hi = mid
     return float(mpmath.pi - mpmath.e**hi)
+
+
+@dataclass(frozen=True, eq=False)
+class Periods(Result):
+    """The periods of one pendulum, each under its glossary name (``pendulab period --json``).
+
+    Attributes
+    ----------
+    length, amplitude, g : float
+        The inputs' doubles.
+    amplitude_text : str
+        The amplitude as written (``4pi/5``, ``0.9999999999999999999999999pi``).
+    iterations : int or None
+        The fixed AGM iterations asked for (``period_iterated``).
+    period : float or None
+        (8) to convergence on the doubles, correctly rounded (:func:`agm_period`); ``None``
+        where the amplitude is below pi but its double is not (see
+        :attr:`amplitude_double_below_pi`).
+    period_as_written : float
+        The double nearest to the true period of the inputs as written (:func:`period_double`).
+    small_angle_period : float
+        ``2 pi sqrt(l/g)`` of the doubles.
+    period_iterated : float or None
+        (8) after ``iterations`` iterations on the doubles (7: the coursework's ``T^``);
+        ``None`` without ``iterations`` or where ``period`` is ``None``.
+    period_digits : str or None
+        The period of the inputs as written to the ``digits`` asked for, every digit proved
+        (:func:`period_digits`); ``None`` where no digits were asked for.
+    """
+
+    length: float
+    amplitude: float
+    g: float
+    amplitude_text: str
+    iterations: int | None
+    period: float | None
+    period_as_written: float
+    small_angle_period: float
+    period_iterated: float | None
+    period_digits: str | None
+
+    @property
+    def amplitude_double_below_pi(self) -> bool:
+        """Whether the amplitude's double is below pi, so that (8) on doubles has a value."""
+        return self.period is not None
+
+
+def periods(length: float | str | Exact, amplitude: float | str | Exact, g: float | str | Exact = G_EXACT,
+            iterations: int | None = None, digits: int | None = None) -> Periods:
+    """Every period of one pendulum (:class:`Periods`): converged, as written, small-angle,
+    after ``iterations`` iterations, and to ``digits`` proved digits."""
+    l_, a_, g_ = _exact_inputs(length, amplitude, g)
+    lf, af, gf = float(l_), float(a_), float(g_)
+    on_doubles = af < _math.pi  # below pi as written, its double may be pi
+    return Periods(
+        length=lf,
+        amplitude=af,
+        g=gf,
+        amplitude_text=str(a_),
+        iterations=iterations,
+        period=agm_period(lf, af, gf) if on_doubles else None,
+        period_as_written=period_double(l_, a_, g_),
+        small_angle_period=small_angle_period(lf, gf),
+        period_iterated=(agm_period(lf, af, gf, iterations=iterations)
+                         if on_doubles and iterations is not None else None),
+        period_digits=None if digits is None else period_digits(l_, a_, g_, digits),
+    )

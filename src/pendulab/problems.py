@@ -8,7 +8,7 @@ from __future__ import annotations
 import math
 from collections.abc import Sequence
 from dataclasses import dataclass
-from typing import TYPE_CHECKING, Literal
+from typing import TYPE_CHECKING, Any, Literal
 
 from . import cases
 from .crossing import PeriodEstimate, estimate_period, observed_orders, search_error, search_period
@@ -275,6 +275,21 @@ class Problem2(Result):
     def error_estimate(self) -> float:
         return self.run.error_estimate
 
+    def to_dict(self) -> dict[str, Any]:
+        """Flat (``pendulab newton --json``): the equation's numbers, the run's (iterates,
+        ``q_k``, the stop), ``[a, b]`` and each condition of 2(a) with its numbers."""
+        e, chk = self.equation, self.interval
+        return {
+            "length": e.length, "target": e.target, "g": e.g, "p": e.p,
+            "alpha": self.alpha, "alpha_degrees": self.alpha_degrees, "closed_form": self.closed_form,
+            "x0": self.x0, "x0_from_fourier": self.x0_from_fourier, "x0_in_interval": self.x0_in_interval,
+            **self.run.to_dict(),
+            "ratios": list(self.ratios),
+            "interval": [chk.a, chk.b], "interval_degrees": list(self.interval_degrees),
+            "interval_conditions": [{"name": c.name, "holds": c.holds, **c.values} for c in chk.conditions],
+            "curvature_positive": self.curvature_positive,
+        }
+
 
 def problem2(
     length: float = cases.NEWTON_LENGTH,
@@ -390,6 +405,26 @@ class Problem4(Result):
     @property
     def points(self) -> int:
         return len(self.data.t)
+
+    def to_dict(self) -> dict[str, Any]:
+        """Flat (``pendulab fit --json``): the inputs, the last points, the normal equations
+        and their proof of definiteness, the coefficients by name, the deviations; without
+        the data and the fine curves (``data``, ``curve_*``: arrays for plots)."""
+        f = self.fit
+        return {
+            "length": self.length, "amplitude": self.amplitude, "step": self.step, "t_hat": self.t_hat,
+            "t_max": self.t_max, "t_max_rule": self.t_max_rule, "points": self.points,
+            "last_points": self.last_points, "round": f.decimals,
+            "normal_matrix": f.normal_matrix, "normal_rhs": f.normal_rhs,
+            **f.definiteness.to_dict(),
+            "coefficients": f.coefficient_dict(),
+            "reference_coefficients": dict(zip(f.names, f.reference_coefficients.tolist())),
+            "coefficient_shift": f.coefficient_shift,
+            "ssd": f.ssd, "max_deviation": f.max_deviation, "max_deviation_at": f.argmax_deviation,
+            "tolerance": self.tolerance, "below_tolerance": self.below_tolerance,
+            "exact_deviation": self.exact_deviation, "exact_deviation_at": self.exact_deviation_at,
+            "taylor_error": self.taylor_error,
+        }
 
 
 def problem4(
@@ -536,6 +571,15 @@ class Problem5(Result):
     def substitution_reference(self) -> float:
         """The substituted errors' reference: ``T^`` (8) where it has converged, else ``T``."""
         return _substitution_reference(self.t_hat, self.period)
+
+    def to_dict(self) -> dict[str, Any]:
+        """The numbers (``pendulab quadrature --json``): the fields but the rule, ``t_hat_ulps``,
+        ``t_hat_converged``, and with the substitution its reference by name (``"t_hat"`` or ``"period"``)."""
+        d = super().to_dict()
+        del d["rule"], d["substitution_reference"]  # the rule is a constant, GAUSS3
+        if any(row.substitution_estimate is not None for row in self.rows):
+            d["substitution_reference"] = "t_hat" if self.t_hat_converged else "period"
+        return d
 
 
 def _ulps_from(t_hat: float, rounded: float) -> int:

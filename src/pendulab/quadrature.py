@@ -37,6 +37,7 @@ import math
 from collections.abc import Callable
 from dataclasses import dataclass
 from fractions import Fraction
+from typing import Any
 
 import numpy as np
 
@@ -314,6 +315,14 @@ class QuadratureRow(Result):
     substitution_estimate: float | None = None
     substitution_error: float | None = None
     substitution_rate: float | None = None
+
+    def to_dict(self) -> dict[str, Any]:
+        """The fields; the substitution's three only where it was computed."""
+        d = super().to_dict()
+        if self.substitution_estimate is None:
+            for k in ("substitution_estimate", "substitution_error", "substitution_rate"):
+                del d[k]
+        return d
 
 
 def observed_rates(ns, errors, floor: float) -> list[float | None]:

@@ -5,7 +5,9 @@ The results are frozen dataclasses that derive from :class:`Result`:
 - their arrays are read-only and cannot be made writeable again (a result cannot be
   changed behind its back);
 - ``==`` is identity and ``hash()`` works (``eq=False``: arrays have no single truth value);
-- :meth:`Result.to_dict` gives the fields as a ``dict``;
+- :meth:`Result.to_dict` gives the fields and the numbers derived from them as a ``dict``:
+  what the command line prints with ``--json`` (a result whose JSON form differs, flat or
+  without its bulk arrays, says so in its own ``to_dict``);
 - :meth:`Result.to_frame` gives a pandas ``DataFrame`` (pandas is optional:
   ``pip install 'pendulab[pandas]'``); :func:`to_frame` does the same for a sequence of
   results, one row each (the rows of problems 3 and 5, a list of estimates);
@@ -18,18 +20,34 @@ from __future__ import annotations
 import dataclasses
 import html
 import math
+import sys
 from collections.abc import Iterable, Mapping
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
-import numpy as np
+if TYPE_CHECKING:
+    import numpy as np
 
 __all__ = ["Result", "to_frame"]
+
+
+def _numpy() -> Any:
+    """numpy where something has loaded it, else None: no field holds an array before numpy
+    is loaded, so a result of plain numbers (the period's) never loads it (start-up time)."""
+    return sys.modules.get("numpy")
+
+
+def _numbers() -> tuple[type, ...]:
+    """The scalar number types: Python's, and numpy's where it is loaded."""
+    np = _numpy()
+    return (bool, int, float) if np is None else (bool, int, float, np.number)
 
 
 def _read_only(value: Any) -> Any:
     """An array that no one can write to: a copy in an immutable ``bytes`` buffer, which
     numpy refuses to flag writeable again (a read-only view could be). The caller's own
     array is left as it is; an array already sealed this way is kept without a copy."""
+    import numpy as np
+
     if not isinstance(value, np.ndarray) or _sealed(value):
         return value
     if value.dtype.hasobject:  # no bytes for Python objects: a read-only view
@@ -41,6 +59,8 @@ def _read_only(value: Any) -> Any:
 
 def _sealed(value: np.ndarray) -> bool:
     """Whether ``value`` is read-only over memory that a ``bytes`` object owns."""
+    import numpy as np
+
     base: Any = value
     while isinstance(base, np.ndarray):
         base = base.base
@@ -58,6 +78,9 @@ class Result:
     __slots__ = ()
 
     def __post_init__(self) -> None:
+        np = _numpy()
+        if np is None:
+            return
         for f in dataclasses.fields(self):  # type: ignore[arg-type]
             value = getattr(self, f.name)
             if isinstance(value, np.ndarray):
@@ -69,8 +92,10 @@ class Result:
             object.__setattr__(self, f.name, new)
 
     def to_dict(self) -> dict[str, Any]:
-        """The fields as a ``dict``; nested results become dicts too, arrays stay arrays."""
-        return {f.name: _plain(getattr(self, f.name)) for f in dataclasses.fields(self)}  # type: ignore[arg-type]
+        """The fields, then the numbers derived from them (:meth:`derived`), as a ``dict``;
+        nested results become dicts too, arrays stay arrays."""
+        fields = {f.name: _plain(getattr(self, f.name)) for f in dataclasses.fields(self)}  # type: ignore[arg-type]
+        return fields | self.derived()
 
     def to_frame(self) -> Any:
         """A pandas ``DataFrame``: the result's table, or one row of its scalar fields."""
@@ -92,7 +117,7 @@ class Result:
             if _scalar(value):
                 row[f.name] = value
             elif isinstance(value, tuple) and 0 < len(value) <= 3 and all(
-                isinstance(v, (int, float, np.number)) for v in value
+                isinstance(v, _numbers()) for v in value
             ):
                 for i, v in enumerate(value):
                     row[f"{f.name}_{i}"] = v
@@ -104,7 +129,7 @@ class Result:
         out: dict[str, Any] = {}
         for name in _properties(type(self)):
             value = getattr(self, name)
-            if isinstance(value, (bool, int, float, np.number)) or value is None:
+            if isinstance(value, _numbers()) or value is None:
                 out[name] = value
         return out
 
@@ -138,7 +163,7 @@ def _pandas() -> Any:
 
 
 def _scalar(value: Any) -> bool:
-    return isinstance(value, (bool, int, float, str, np.number)) or value is None
+    return isinstance(value, (*_numbers(), str)) or value is None
 
 
 def _properties(cls: type) -> list[str]:
@@ -166,7 +191,8 @@ def _html(value: Any) -> str:
     if isinstance(value, (tuple, list)) and value and all(isinstance(v, Result) for v in value):
         inner = "".join(v._repr_html_() for v in value)
         return f"<details><summary>{len(value)} × {type(value[0]).__name__}</summary>{inner}</details>"
-    if isinstance(value, np.ndarray):
+    np = _numpy()
+    if np is not None and isinstance(value, np.ndarray):
         body = np.array2string(value, threshold=6, edgeitems=2, floatmode="unique", separator=", ")
         return f"array {value.shape} {value.dtype}: <code>{html.escape(body)}</code>"
     if isinstance(value, dict):
@@ -174,6 +200,6 @@ def _html(value: Any) -> str:
         return f"<ul>{items}</ul>"
     if isinstance(value, float) and math.isfinite(value):
         return f"<code>{value!r}</code>"
-    if isinstance(value, (int, float, tuple, np.number)):
+    if isinstance(value, (*_numbers(), tuple)):
         return f"<code>{html.escape(repr(value))}</code>"
     return html.escape(str(value))

@@ -1,7 +1,6 @@
 """Commands beyond the coursework: ``approximations`` and ``sweep``."""
 from __future__ import annotations
 
-import math
 import re
 import sys
 
@@ -21,10 +20,6 @@ from ._common import (
     output,
     save_plot,
 )
-
-#: The amplitudes (degrees) of the approximations table.
-TABLE_DEGREES = (1, 10, 30, 60, 90, 120, 150, 170, 179, 179.9)
-
 
 #: The most amplitudes in one sweep range.
 MAX_COUNT = 1_000_000
@@ -68,42 +63,32 @@ def approximations(plot, as_json):
     Small angle, the coursework's (9), Kidd-Fogg, Lima-Arun, Ganley, and the AGM
     truncated after 1, 2, 3 iterations (Carvalhaes-Suppes).
     """
-    import numpy as np
-
-    from ..approximations import approximation_errors
+    from ..approximations import REACH_TOLERANCES, approximation_errors, approximation_table
 
     if plot:
         check_plot_path("plot", plot)
-    table = approximation_errors(np.radians(TABLE_DEGREES))
     fine = approximation_errors()  # 1000 amplitudes, 0.1 to 179.9 degrees
-    tols = (1e-2, 1e-4, 1e-6)
-    reach = {f.name: {f"{t:g}": math.degrees(fine.max_amplitude_within(f.name, t)) for t in tols}
-             for f in fine.formulas}
+    table = approximation_table(fine)
     if plot:
         from ..plots.beyond import approximation_errors as draw
 
         save_plot(lambda ax: draw(fine, ax), plot, (7.0, 4.6))
     if as_json:
-        emit_json({
-            "amplitudes_deg": list(TABLE_DEGREES),
-            "formulas": [{"name": f.name, "formula": f.label, "source": f.source,
-                          "relative_errors": table.errors[f.name],
-                          "max_amplitude_deg_within": reach[f.name]} for f in table.formulas],
-        })
+        emit_json(table.to_dict())
         return
     names = [f.name for f in table.formulas]
     click.echo("relative error T_approx/T - 1 (T: AGM to convergence)")
     click.echo(f"{'alpha (deg)':>11} " + " ".join(f"{n:>12}" for n in names))
-    for i, deg in enumerate(TABLE_DEGREES):
-        click.echo(f"{deg:>11g} " + " ".join(f"{table.errors[n][i]:>12.3e}" for n in names))
+    for i, deg in enumerate(table.amplitudes_deg):
+        click.echo(f"{deg:>11g} " + " ".join(f"{f.relative_errors[i]:>12.3e}" for f in table.formulas))
     click.echo("")
     click.echo("largest amplitude (deg) up to which |error| stays within")
-    click.echo(f"{'formula':>12} " + " ".join(f"{t:>8g}" for t in tols))
-    for n in names:
-        click.echo(f"{n:>12} " + " ".join(f"{reach[n][f'{t:g}']:>8.1f}" for t in tols))
+    click.echo(f"{'formula':>12} " + " ".join(f"{t:>8g}" for t in REACH_TOLERANCES))
+    for f in table.formulas:
+        click.echo(f"{f.name:>12} " + " ".join(f"{f.max_amplitude_deg_within[f'{t:g}']:>8.1f}" for t in REACH_TOLERANCES))
     click.echo("")
     for f in table.formulas:
-        click.echo(f"{f.name}: {f.label}  [{f.source}]")
+        click.echo(f"{f.name}: {f.formula}  [{f.source}]")
     if plot:
         click.echo(f"wrote {plot}")
 

@@ -4,6 +4,7 @@ from __future__ import annotations
 import click
 
 from ..cases import EXAMPLE_GROUP, FIGURE3_STEP, FIGURE3_T_MAX, PROBLEM3_AMPLITUDE, PROBLEM3_STEPS, PROBLEM5
+from ..words import sentence
 from ._common import (
     ANGLE,
     DURATION,
@@ -60,33 +61,16 @@ def period(length, amplitude, iterations, digits, g, as_json):
     import math
 
     from ..exact import Exact
-    from ..period import agm_period, period_digits, small_angle_period
+    from ..period import agm_period, period_digits
 
     # Where the amplitude is below pi but its double is not, (8) on doubles has no value.
     on_doubles = float(amplitude) < math.pi
-    note = (f"the amplitude {amplitude.text} is below pi but its nearest double is not: (8) on doubles is "
-            "undefined; period_as_written is the period of the amplitude as written")
-    # The text needs the certified digits only; the double (8) is computed where it is shown.
-    if as_json:
-        from ..period import period_double
+    if as_json:  # the double (8) and the period as written are computed where they are shown
+        from ..period import periods
 
-        data = {
-            "length": float(length),
-            "amplitude": float(amplitude),
-            "g": float(g),
-            "iterations": iterations,
-            "period": agm_period(float(length), float(amplitude), float(g)) if on_doubles else None,
-            "period_as_written": period_double(length, amplitude, g),
-            "small_angle_period": small_angle_period(float(length), float(g)),
-        }
-        if iterations is not None:
-            data["period_iterated"] = (agm_period(float(length), float(amplitude), float(g), iterations=iterations)
-                                       if on_doubles else None)
-        if not on_doubles:
-            data["period_note"] = note
-        if digits is not None:
-            data["period_digits"] = period_digits(length, amplitude, g, digits)
-        emit_json(data)
+        r = periods(length, amplitude, g, iterations, digits)
+        note = {} if r.amplitude_double_below_pi else {"period_note": _period_note(r.amplitude_text)}
+        emit_json(r.to_dict() | note)
         return
     d = digits or 15
     text = period_digits(length, amplitude, g, d)
@@ -98,7 +82,12 @@ def period(length, amplitude, iterations, digits, g, as_json):
             t = agm_period(float(length), float(amplitude), float(g), iterations=iterations)
             click.echo(f"{label:34}T^ = {t!r} s")
         else:
-            click.echo(f"{label:34}T^ undefined: {note}")
+            click.echo(f"{label:34}T^ undefined: {_period_note(amplitude.text)}")
+
+
+def _period_note(amplitude_text: str) -> str:
+    """Why (8) on doubles has no value: the amplitude is below pi, its double is not."""
+    return sentence("period.note", amplitude=amplitude_text)
 
 
 @click.command()
@@ -131,8 +120,7 @@ def simulate(length, amplitude, step, t_max, t0, digits, as_csv, plot, phase, me
     if phase:
         save_plot(lambda ax: _plots().phase_portrait(tr, ax), phase)
     if as_json:
-        emit_json({"length": tr.length, "amplitude": tr.amplitude, "g": tr.g, "step": tr.step,
-                   "method": method, "n_steps": tr.n_steps, "t": tr.t, "theta": tr.theta, "omega": tr.omega})
+        emit_json(tr.to_dict())
     elif as_csv:
         lines = ["t,theta,omega"] + [f"{a!r},{b!r},{c!r}" for a, b, c in zip(tr.t.tolist(), tr.theta.tolist(), tr.omega.tolist())]
         click.echo("\n".join(lines))
@@ -166,40 +154,15 @@ def _plots():
 @json_option
 def estimate(length, amplitude, steps, t_max, method, dense, g, as_json):
     """The period from simulations (problem 3(c)-(d)): bracket, linear and cubic estimates."""
-    import math
-
-    from .. import _validate as v
-    from ..crossing import default_t_max, estimate_period, observed_orders
+    from ..crossing import estimate_periods
     from ..group import group_length
-    from ..period import agm_period
-    from ..taylor import MAX_STEPS
 
     length = float(length) if length is not None else group_length(EXAMPLE_GROUP).length
-    # The whole list's work, weighed by the method's cost, before the first run: at most
-    # what one run may take (MAX_STEPS steps of (3)).
-    # A step whose own run is beyond one run's limit is left to estimate_period's message
-    # (which offers --t-max too); here the steps each within it, too many together.
-    period = agm_period(length, float(amplitude), float(g))
-    work = [(default_t_max(period, h) if t_max is None else float(t_max)) / h for h in steps]
-    if all(math.isfinite(w) and w <= v.steps_for(method, MAX_STEPS) for w in work):  # blamed: the step that needs the most
-        v.work_within("steps", max(zip(work, steps))[1], sum(work), method, MAX_STEPS)
-    rows = [estimate_period(length, float(amplitude), h, t_max, 0.0, float(g), method) for h in steps]
-    period = rows[0].period  # the AGM period (8), computed once by estimate_period
-    lin_err = [r.linear_error for r in rows]
-    cub_err = [r.cubic_error for r in rows]
-    lin_ord = observed_orders(steps, lin_err)
-    cub_ord = observed_orders(steps, cub_err)
+    r = estimate_periods(length, float(amplitude), steps, t_max, float(g), method)
     if as_json:
-        emit_json({
-            "length": length, "amplitude": float(amplitude), "g": float(g), "method": method, "period": period,
-            "rows": [{"step": r.step, "j": r.j, "bracket": list(r.bracket), "linear": r.linear,
-                      "cubic": r.cubic, "cubic_error_estimate": r.cubic_error_estimate,
-                      "cubic_error_estimate_rounding_level": r.interpolation.rounding_level,
-                      "linear_error": le, "cubic_error": ce, "linear_order": lo, "cubic_order": co,
-                      "dense": r.dense, "dense_error": r.dense_error}
-                     for r, le, ce, lo, co in zip(rows, lin_err, cub_err, lin_ord, cub_ord)],
-        })
+        emit_json(r.to_dict())
         return
+    rows, period = r.rows, r.period
     click.echo(f"l = {length!r} m, alpha = {float(amplitude)!r} rad, method {method}")
     click.echo(f"exact period (AGM, (8))  T = {period!r} s")
     head = f"{'h':>8} {'bracket [t_j, t_j+1]':>25} {'linear':>18} {'cubic p(0)':>18} {'interp. err. est.':>17} {'|linear - T|':>12} {'|cubic - T|':>12} {'order':>6}"
@@ -207,17 +170,17 @@ def estimate(length, amplitude, steps, t_max, method, dense, g, as_json):
         head += f" {'dense output':>18} {'|dense - T|':>12}"
     click.echo(head)
     below = False
-    for r, le, ce, co in zip(rows, lin_err, cub_err, cub_ord):
-        br = f"[{r.bracket[0]:.10g}, {r.bracket[1]:.10g}]"
+    for e, co in zip(rows, r.cubic_orders):
+        br = f"[{e.bracket[0]:.10g}, {e.bracket[1]:.10g}]"
         order = f"{co:6.2f}" if co is not None else f"{'':>6}"
         # An estimate below the rounding level of t_k = k h is rounding, not interpolation error.
-        est = f"{r.cubic_error_estimate:.3e}"
-        if not r.interpolation.error_estimate_resolved:
-            est, below = f"<{r.interpolation.rounding_level:.1e}*", True
-        line = (f"{r.step:>8g} {br:>25} {r.linear:>18.15g} {r.cubic:>18.15g} {est:>17} "
-                f"{le:>12.3e} {ce:>12.3e} {order}")
+        est = f"{e.cubic_error_estimate:.3e}"
+        if not e.interpolation.error_estimate_resolved:
+            est, below = f"<{e.interpolation.rounding_level:.1e}*", True
+        line = (f"{e.step:>8g} {br:>25} {e.linear:>18.15g} {e.cubic:>18.15g} {est:>17} "
+                f"{e.linear_error:>12.3e} {e.cubic_error:>12.3e} {order}")
         if dense:
-            line += f" {r.dense:>18.15g} {r.dense_error:>12.3e}"
+            line += f" {e.dense:>18.15g} {e.dense_error:>12.3e}"
         click.echo(line)
     if below:
         click.echo("* below the rounding level of t_k = k h: the estimate there is rounding, not interpolation error")
@@ -241,7 +204,6 @@ def length(numbers, as_json):
     except InputError as exc:  # the library calls them students; here they are NUMBERS
         raise InputError("numbers", exc.value, exc.allowed) from None
     if as_json:
-        emit_json({"numbers": list(res.numbers), "sum": res.total, "digits": res.digits,
-                   "length": res.length, "length_text": res.text})
+        emit_json(res.to_dict())
         return
-    click.echo(res.text)
+    click.echo(res.length_text)

@@ -80,13 +80,7 @@ def gravity(length, length_error, period, period_error, as_json):
     r = problem1(float(length), length_error, period, period_error)
     rule, abs_formula, rel_formula = (sentence(f"p1.{k}") for k in ("rule", "abs_error_formula", "rel_error_formula"))
     if as_json:
-        emit_json({
-            "length": r.length, "length_error": r.length_error, "period": r.period, "period_error": r.period_error,
-            "g": r.g, "abs_error": r.abs_error, "rel_error": r.rel_error, "dg_dl": r.dg_dl, "dg_dT": r.dg_dT,
-            "g_min": r.g_min, "g_max": r.g_max, "worst_error": r.worst_error, "error_bound": r.error_bound,
-            "significant_digits": r.significant_digits, "g_rounded": r.g_text, "rule": rule,
-            "abs_error_formula": abs_formula, "rel_error_formula": rel_formula,
-        })
+        emit_json(r.to_dict() | {"rule": rule, "abs_error_formula": abs_formula, "rel_error_formula": rel_formula})
         return
     click.echo(f"l = {r.length!r} +- {r.length_error!r} m,  T = {r.period!r} +- {r.period_error!r} s")
     click.echo(f"g = 4 pi^2 l / T^2          = {r.g!r} m/s^2")
@@ -114,24 +108,13 @@ def newton(length, target, x0, g, as_json):
 
     r = problem2(float(length), float(target), x0, float(g))
     run, chk = r.run, r.interval
-    x0_rule = sentence("p2.x0_rule") if r.x0_from_fourier else "given"
+    x0_rule = sentence("p2.x0_rule" if r.x0_from_fourier else "p2.x0_given")
     justification = sentence("p2.justification." + ("positive" if r.curvature_positive else "negative"))
     if as_json:
-        emit_json({
-            "length": r.equation.length, "target": r.equation.target, "g": r.equation.g, "p": r.equation.p,
-            "alpha": r.alpha, "alpha_degrees": r.alpha_degrees, "closed_form": r.closed_form,
-            "x0": r.x0, "x0_rule": x0_rule, "x0_in_interval": r.x0_in_interval,
-            "iterates": list(run.iterates), "values": list(run.values), "corrections": list(run.corrections),
-            "criterion": run.criterion, "tol": run.tol, "stop_reason": run.stop_reason,
-            "stop_correction": run.stop_correction, "stop_limit": run.stop_limit,
-            "q": list(run.q), "q_rounding": list(run.q_rounding), "k_max": run.k_max, "q_kmax": run.q_kmax,
-            "asymptotic_constant": run.asymptotic_constant, "ratios": list(r.ratios),
-            "rounding_level": run.rounding_level, "error_estimate": run.error_estimate,
-            "interval": [chk.a, chk.b], "interval_degrees": list(r.interval_degrees),
-            "interval_conditions": [{"name": c.name, "holds": c.holds, "detail": condition_text(c), **c.values}
-                                    for c in chk.conditions],
-            "justification": justification,
-        })
+        d = r.to_dict() | {"x0_rule": x0_rule, "justification": justification}
+        for cd, c in zip(d["interval_conditions"], chk.conditions):
+            cd["detail"] = condition_text(c)
+        emit_json(d)
         return
     e = r.equation
     click.echo(f"f(alpha) = (2 pi/p)(1 + sin^2(alpha/2)/4) - {e.target!r},  p = sqrt(g/l) = {e.p!r}")
@@ -191,22 +174,7 @@ def fit(length, amplitude, step, t_max, decimals, plot, g, as_json):
     answer = sentence("p4.answer." + ("yes" if r.below_tolerance else "no"), deviation=r.fit.max_deviation,
                       at=r.fit.argmax_deviation, tolerance=r.tolerance, exact=r.exact_deviation)
     if as_json:
-        emit_json({
-            "length": r.length, "amplitude": r.amplitude, "step": r.step, "t_hat": r.t_hat,
-            "t_max": r.t_max, "t_max_rule": r.t_max_rule, "points": r.points,
-            "last_points": r.last_points, "round": f.decimals,
-            "normal_matrix": f.normal_matrix, "normal_rhs": f.normal_rhs,
-            "positive_definite": d.positive_definite, "symmetric": d.symmetric, "cholesky": d.cholesky,
-            "cholesky_diagonal": d.cholesky_diagonal, "eigenvalues": d.eigenvalues,
-            "min_eigenvalue": d.min_eigenvalue, "condition_number": d.condition_number,
-            "rounding_perturbation": d.rounding_perturbation,
-            "coefficients": f.coefficient_dict(),
-            "reference_coefficients": dict(zip(f.names, f.reference_coefficients.tolist())),
-            "coefficient_shift": f.coefficient_shift,
-            "ssd": f.ssd, "max_deviation": f.max_deviation, "max_deviation_at": f.argmax_deviation,
-            "tolerance": r.tolerance, "below_tolerance": r.below_tolerance,
-            "exact_deviation": r.exact_deviation, "taylor_error": r.taylor_error, "answer": answer,
-        })
+        emit_json(r.to_dict() | {"answer": answer})
         return
     click.echo(f"l = {r.length!r}, alpha = {r.amplitude!r}, h = {r.step!r}; T^ (8) = {r.t_hat!r}; "
                f"t_max = {r.t_max:g} ({sentence('p4.t_max.' + r.t_max_rule, t_hat=r.t_hat)}); {r.points} points")
@@ -256,20 +224,9 @@ def quadrature(length, amplitude, ns, substitution, graded, g, as_json):
     r = problem5(float(length), float(amplitude), ns, substitution, float(g), graded=graded)
     last = r.rows[-1].rate
     answer_5a = sentence("p5.answer_5a")
-    rate_text = sentence("p5.rate", observed="none (fewer than two n, or an error at rounding level)" if last is None else f"{last:.3f}")
+    rate_text = sentence("p5.rate", observed=sentence("p5.rate_none") if last is None else f"{last:.3f}")
     if as_json:
-        rows = []
-        for row in r.rows:
-            d = {"n": row.n, "estimate": row.estimate, "error": row.error, "rate": row.rate}
-            if substitution:
-                d |= {"substitution_estimate": row.substitution_estimate, "substitution_error": row.substitution_error,
-                      "substitution_rate": row.substitution_rate}
-            rows.append(d)
-        extra = {"substitution_reference": "t_hat" if r.t_hat_converged else "period"} if substitution else {}
-        emit_json({"length": r.length, "amplitude": r.amplitude, "g": r.g, "t_hat": r.t_hat,
-                   "period": r.period, "t_hat_ulps": r.t_hat_ulps, "t_hat_note": t_hat_note(r),
-                   **extra, "single": r.single, "composite10": r.composite10, "graded": graded, "rows": rows,
-                   "answer_5a": answer_5a, "rate_explanation": rate_text})
+        emit_json(r.to_dict() | {"t_hat_note": t_hat_note(r), "answer_5a": answer_5a, "rate_explanation": rate_text})
         return
     click.echo(f"l = {r.length!r}, alpha = {r.amplitude!r}; T^ (8) = {r.t_hat!r} s")
     if (note := t_hat_note(r)) is not None:
@@ -295,7 +252,5 @@ def t_hat_note(r) -> str | None:
     double precision (``t_hat_converged`` false), else None (``null`` in ``--json``)."""
     if r.t_hat_converged:
         return None
-    return (f"T^ (8) differs from the correctly rounded period T = {r.period!r} s by "
-            f"{r.t_hat - r.period:+.3e} s ({r.t_hat_ulps:+d} ulp, more than the "
-            f"{FIXED_ITERATIONS_ULPS} ulp the loop's rounding can account for): 7 iterations of (7) have not "
-            "converged this close to pi, so errors against T^ include T^'s own")
+    return sentence("p5.t_hat_note", period=r.period, difference=r.t_hat - r.period, ulps=r.t_hat_ulps,
+                    limit=FIXED_ITERATIONS_ULPS)

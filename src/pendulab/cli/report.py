@@ -82,5 +82,5 @@ def report(more: tuple[str, ...], students: str, lang: str, output: str, names: 
 
         answers = answer_key([numbers]).to_dict()
         emit_json({"output": str(written), "bytes": written.stat().st_size, "lang": lang,
-                   "students": list(numbers), "length_text": group_length(numbers).text,
+                   "students": list(numbers), "length_text": group_length(numbers).length_text,
                    "answers": {"group": answers["groups"][0], "common": answers["common"]}})
