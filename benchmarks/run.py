@@ -26,6 +26,7 @@ def main() -> None:
     repeat = 3 if quick else 5
     from _peers import build_c, print_table
     from agm_ulps import ulps_rows
+    from bench_agm import agm_rows
     from bench_core import period_rows, taylor_rows
     from bench_start import start_rows
     from bench_sweep import sweep_rows
@@ -34,7 +35,7 @@ def main() -> None:
           f"load average {os.getloadavg()[0]:.2f} (1 min)")
     t = time.perf_counter()
     dll = build_c()
-    rows = taylor_rows(dll, repeat) + sweep_rows(dll, repeat=repeat) + period_rows(repeat)
+    rows = taylor_rows(dll, repeat) + sweep_rows(dll, repeat=repeat) + period_rows(repeat) + agm_rows(5 * repeat)
     rows += start_rows() + ulps_rows(10_000 if quick else 100_000)
     print()
     print_table(rows)

@@ -80,6 +80,36 @@ def test_seven_iterations_reproduce_spec_and_are_exact_for_moderate_amplitudes()
         assert abs(t7 - agm_period(1.0, alpha)) <= 2 * math.ulp(t7)
 
 
+@pytest.mark.parametrize("iterations", [0, 1, 3, 7])
+def test_fixed_count_is_the_coursework_loop_interpreted_and_compiled(iterations):
+    # One AGM loop in double precision: the interpreter runs it for one amplitude and for
+    # arrays shorter than COMPILED_MIN, numba for longer ones. Both must be the coursework
+    # program's loop (agm.py's t_hat), bit for bit, amplitudes up to pi - 1e-15.
+    from pendulab.coursework import load
+    from pendulab.period import COMPILED_MIN
+
+    t_hat = load()["agm.py"].t_hat
+    rng = np.random.default_rng(iterations)
+    alpha = np.concatenate([rng.uniform(0, math.pi, COMPILED_MIN), math.pi - np.logspace(-1, -15, 50), [0.0]])
+    plain = np.array([t_hat(2.5, a, G, iterations) for a in alpha.tolist()])
+    for part in (alpha, alpha[-100:]):  # compiled, interpreted
+        assert np.array_equal(agm_period(2.5, part, G, iterations=iterations), plain[-part.size:])
+    assert agm_period(2.5, float(alpha[7]), G, iterations=iterations) == plain[7]
+
+
+def test_converged_mean_same_bits_everywhere_and_within_two_ulps_of_mpmath():
+    from pendulab.period import COMPILED_MIN, agm_mean
+
+    rng = np.random.default_rng(5)
+    b0 = np.concatenate([rng.uniform(0, 1, COMPILED_MIN), np.logspace(-300, 0, 100)])
+    compiled, interpreted = agm_mean(b0), agm_mean(b0[-200:])
+    assert np.array_equal(compiled[-200:], interpreted)
+    assert all(agm_mean(float(b)) == v for b, v in zip(b0[::97].tolist(), compiled[::97], strict=True))
+    with mpmath.workdps(40):
+        for b, v in zip(b0[::50].tolist(), compiled[::50], strict=True):
+            assert abs(v - float(mpmath.agm(1, b))) <= 2 * math.ulp(v)
+
+
 def test_fixed_iterations_limit_brackets_the_truncation_error():
     limit = fixed_iterations_limit(7)
     assert math.pi - 1e-12 < limit < math.pi

@@ -27,6 +27,7 @@ from llvmlite import ir  # type: ignore[import-untyped]
 from numba import njit, types
 from numba.extending import intrinsic
 
+from . import _mean
 from ._numba_cache import setup as cache_setup
 
 cache_setup(__file__)  # before the first cache=True: a read-only install falls back
@@ -260,20 +261,20 @@ def t0_dd(length, gh, gl):
     return dd_mul(TWO_PI_HI, TWO_PI_LO, qh, ql)
 
 
+#: :func:`pendulab._mean.agm`, the AGM (7) in double precision, compiled and inlined into its
+#: callers here and in :mod:`pendulab._kernels`: the interpreter's loop, bit for bit.
+agm = njit(cache=True, nogil=True, inline="always")(_mean.agm)
+
+
 @_jit
 def block_iterations(b0):
-    """Steps of (7) from ``(1, b0)`` until ``a - b <= 2^-14 a``.
+    """Steps of (7) from ``(1, b0)`` until ``a - b <= 2^-14 a`` (:data:`agm`).
 
     Then ``M = A (1 - x/4 - 5x^2/64 + O(x^3))`` with ``A = (a+b)/2``,
     ``x = ((a-b)/(a+b))^2 <= 2^-30`` has a remainder below 2^-84. The count only grows as
     ``b0`` falls (the AGM preserves order), so the block's smallest ``b0`` sets it.
     """
-    a, b = 1.0, b0
-    for k in range(64):
-        if a - b <= 2.0**-14 * a:
-            return k
-        a, b = 0.5 * (a + b), math.sqrt(a * b)
-    return 64
+    return agm(b0, _mean.MAX_ITERATIONS, 2.0**-14)[1]
 
 
 @_jit

@@ -13,7 +13,7 @@ from llvmlite import ir  # type: ignore[import-untyped]
 from numba import njit, prange, types
 from numba.extending import intrinsic
 
-from ._agm import COS_HI, N_TABLE, PI_HI, SIN_HI
+from ._agm import COS_HI, N_TABLE, PI_HI, SIN_HI, agm
 from ._interrupt import CHUNK_COST, pieces, run_pieces
 from ._libm import cos, sin
 from .methods import MAX_TAYLOR_ORDER, Kernel, Status, cost_per_step
@@ -490,22 +490,11 @@ def first_return_pieces(method, order, alpha, c, h, n):
 
 
 @njit(cache=True, nogil=True, parallel=True)
-def agm_means(alpha, iterations, rtol):
-    """``v = (a_n + b_n)/2`` of (7)-(8) from ``(1, cos(alpha_i/2))`` for each amplitude.
-
-    ``iterations < 0``: iterate until ``a - b <= rtol a``; otherwise exactly that many
-    steps (7 is the coursework's). The same loop as ``period.agm_mean`` on one float.
-    """
-    out = np.empty(alpha.size)
-    for i in prange(alpha.size):
-        a, b = 1.0, math.cos(0.5 * alpha[i])
-        if iterations < 0:
-            for _ in range(64):
-                if a - b <= rtol * a:
-                    break
-                a, b = 0.5 * (a + b), math.sqrt(a * b)
-        else:
-            for _ in range(iterations):
-                a, b = 0.5 * (a + b), math.sqrt(a * b)
-        out[i] = 0.5 * (a + b)
+def agm_means(x, of_angle, iterations, rtol):
+    """``pendulab._mean.agm(b0, iterations, rtol)[0]`` for each ``b0 = x_i``, or
+    ``b0 = cos(x_i/2)`` where ``of_angle``: the one loop of (7), compiled (:data:`agm`)."""
+    out = np.empty(x.size)
+    for i in prange(x.size):
+        b0 = math.cos(0.5 * x[i]) if of_angle else x[i]
+        out[i] = agm(b0, iterations, rtol)[0]
     return out

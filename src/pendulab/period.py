@@ -19,6 +19,7 @@ from fractions import Fraction
 from typing import TYPE_CHECKING, Any, SupportsFloat, TypeGuard, overload
 
 from . import _validate as _v
+from ._mean import FIXED, MAX_ITERATIONS, RTOL, agm
 from .cases import G_EXACT, G
 from .exact import Exact, arb_precision, below_pi
 from .results import Result
@@ -46,10 +47,11 @@ __all__ = [
 # numpy and numba are imported only where arrays are handled: a scalar period (and
 # ``pendulab period``) needs neither.
 
-#: Upper bound on AGM iterations: from b0 = 1e-300 the AGM converges in 17.
-_MAX_ITERATIONS = 64
-# Stop when a - b <= 4 eps a: the next step would change v by less than eps^2.
-_RTOL = 4 * 2.0**-52  # 4 eps
+#: Arrays of at least this many elements run the AGM (7) compiled (``_kernels.agm_means``),
+#: shorter ones in the interpreter, element by element: about 0.7 us each, while loading the
+#: compiled kernel takes about 0.7 s in a fresh process (numba's import, its threads). The
+#: same loop (``pendulab._mean.agm``) either way, so the same bits.
+COMPILED_MIN = 10_000
 #: How far (in ulps) the coursework's 7-iteration ``T^`` of (8), the loop (7) in double
 #: precision, is at most from the correctly rounded period for every amplitude up to
 #: :func:`fixed_iterations_limit`. Derived (``u = 2^-53``, relative errors to first order):
@@ -134,20 +136,34 @@ def agm_mean(b0: float | Exact | ArrayLike, iterations: int | None = None) -> fl
         ``(a_n + b_n)/2`` after ``n`` iterations of (7).
     """
     if _is_scalar(b0):
-        return _agm(float(b0), iterations)[0]
+        if iterations is None:
+            return agm(float(b0), MAX_ITERATIONS, RTOL)[0]
+        return agm(float(b0), iterations, FIXED)[0]
+    return _means(b0, False, iterations)
+
+
+def _count(iterations: int | None) -> tuple[int, float]:
+    """``(iterations, rtol)`` of :func:`pendulab._mean.agm`: to convergence for ``None``."""
+    return (MAX_ITERATIONS, RTOL) if iterations is None else (iterations, FIXED)
+
+
+def _means(x: Any, of_angle: bool, iterations: int | None) -> Any:
+    """:func:`agm_mean` of each element of the array ``x``, or of ``cos(x/2)`` (the C
+    library's ``cos``, as for one amplitude) where ``of_angle``: in the interpreter below
+    :data:`COMPILED_MIN` elements, compiled from there."""
     import numpy as np
 
-    bv = np.array(b0, dtype=float)
-    av = np.ones_like(bv)
-    if iterations is None:
-        for _ in range(_MAX_ITERATIONS):
-            if np.all(av - bv <= _RTOL * av):
-                break
-            av, bv = 0.5 * (av + bv), np.sqrt(av * bv)
+    x = np.asarray(x, dtype=float)
+    n, rtol = _count(iterations)
+    flat = np.ascontiguousarray(x).ravel()
+    if flat.size < COMPILED_MIN:
+        cos = _math.cos
+        out = np.array([agm(cos(0.5 * v) if of_angle else v, n, rtol)[0] for v in flat.tolist()], dtype=float)
     else:
-        for _ in range(iterations):
-            av, bv = 0.5 * (av + bv), np.sqrt(av * bv)
-    return 0.5 * (av + bv)
+        from ._kernels import agm_means
+
+        out = agm_means(flat, of_angle, n, rtol)
+    return out.reshape(x.shape)
 
 
 def nearest_period(length: float, amplitude: float, g: float) -> float:
@@ -223,7 +239,7 @@ def agm_period(length: float | Exact | ArrayLike, amplitude: float | Exact | Arr
     alpha: Any = amplitude if exact_array else _v.amplitudes("amplitude", amplitude)
     scalar = not exact_array and _is_scalar(alpha) and _is_scalar(length)
     if scalar and iterations is not None:
-        return small_angle_period(length, g) / agm_mean(_math.cos(0.5 * alpha), iterations)
+        return small_angle_period(length, g) / agm(_math.cos(0.5 * alpha), iterations, FIXED)[0]
     if scalar:
         small_angle_period(length, g)  # refuses a length or g whose period overflows
         return nearest_period(_v.positive("length", length), alpha, float(g))
@@ -231,12 +247,7 @@ def agm_period(length: float | Exact | ArrayLike, amplitude: float | Exact | Arr
 
     t0 = small_angle_period(length, g)  # checks the lengths and g
     if iterations is not None:
-        from ._kernels import agm_means
-
-        alpha = np.asarray(alpha, dtype=float)
-        flat = np.ascontiguousarray(alpha).ravel()
-        means = agm_means(flat, iterations, _RTOL).reshape(alpha.shape)
-        return t0 / means
+        return t0 / _means(alpha, True, iterations)
     from ._agm import agm_periods_dd
 
     g = float(g)
@@ -257,24 +268,7 @@ def agm_period(length: float | Exact | ArrayLike, amplitude: float | Exact | Arr
 
 def agm_iterations(amplitude: float) -> int:
     """How many iterations of (7) double precision needs at ``amplitude`` (to convergence)."""
-    return _agm(_math.cos(0.5 * _v.amplitude("amplitude", amplitude)), None)[1]
-
-
-def _agm(b0: float, iterations: int | None) -> tuple[float, int]:
-    """``(v, k)``: ``v = (a_k + b_k)/2`` after ``k`` iterations of (7) from ``(1, b0)``, in
-    double precision; ``iterations=None`` stops where ``a - b <= 4 eps a`` (at most
-    ``_MAX_ITERATIONS``). The scalar loop of :func:`agm_mean` and :func:`agm_iterations`;
-    ``_kernels.agm_means`` is the same loop compiled for arrays."""
-    a, b = 1.0, b0
-    if iterations is None:
-        for k in range(_MAX_ITERATIONS):
-            if a - b <= _RTOL * a:
-                return 0.5 * (a + b), k
-            a, b = 0.5 * (a + b), _math.sqrt(a * b)
-        return 0.5 * (a + b), _MAX_ITERATIONS  # pragma: no cover - unreachable for b0 > 0
-    for _ in range(iterations):
-        a, b = 0.5 * (a + b), _math.sqrt(a * b)
-    return 0.5 * (a + b), iterations
+    return agm(_math.cos(0.5 * _v.amplitude("amplitude", amplitude)), MAX_ITERATIONS, RTOL)[1]
 
 
 def _exact_inputs(length: Any, amplitude: Any, g: Any) -> tuple[Exact, Exact, Exact]:
