@@ -2,7 +2,8 @@
 with its peer in the same run, as a ratio.
 
 Rows: the Taylor kernels against a C loop (``cc -O2``, compiled now), the sweep against the
-same C loop on one core, exact periods against ``scipy.special.ellipk`` on one thread,
+same C loop on one core, exact periods against ``scipy.special.ellipk`` on one thread, the
+AGM in double precision against the coursework program, numpy and ``scipy.special.ellipkm1``,
 ``pendulab period`` against ``import numpy``, cold starts against warm ones, and whether
 ``agm_period`` is correctly rounded (10^5 pendulums against mpmath). The machine's load
 (``os.getloadavg``) is printed before and after: ratios are only meaningful when it is low.
