@@ -4,8 +4,9 @@
 min/max reduction of Jugel et al., "M4: A Visualization-Oriented Time Series Data
 Aggregation", PVLDB 7(10), 2014); the phase portrait keeps whole orbits; the animation and
 the global error keep evenly spaced steps. :func:`simulate_arrays` runs the one streamed
-pass (:func:`pendulab.web._view.scan`) in pieces, as the library's drivers run theirs, so a
-request whose client has gone stops between two pieces.
+pass (:func:`pendulab.web.stream.run`: the library's trajectory driver, folded as it goes) in
+pieces, as the library's drivers run theirs, so a request whose client has gone stops between
+two pieces.
 """
 from __future__ import annotations
 
@@ -15,7 +16,7 @@ from typing import Any
 
 import numpy as np
 
-from .._interrupt import CHUNK_COST, pieces, run_pieces
+from .._interrupt import CHUNK_COST
 from ..methods import cost_per_step
 
 #: Phase-portrait points per exact period, and at most this many in all.
@@ -150,7 +151,7 @@ def simulate_arrays(p: Mapping[str, Any], points: int) -> dict[str, Any]:
     """
     from ..period import agm_period
     from ..taylor import method_code, step_count
-    from ._view import scan
+    from . import stream
 
     code, order = method_code(p["method"])
     n = step_count(0.0, p["t_max"], p["step"])
@@ -170,25 +171,14 @@ def simulate_arrays(p: Mapping[str, Any], points: int) -> dict[str, Any]:
     frame_idx = frame_samples(n, per)
     error_idx = frame_samples(n, per, 64, ERROR_POINTS)
     samples = np.union1d(np.union1d(phase_idx, frame_idx), error_idx)
-    s_th, s_om = np.empty(len(samples)), np.empty(len(samples))
-    i_lo, i_hi, e_i_lo, e_i_hi = (np.full(nb, -1, dtype=np.int64) for _ in range(4))
-    th_lo, e_lo = np.full(nb, np.inf), np.full(nb, np.inf)
-    th_hi, e_hi = np.full(nb, -np.inf), np.full(nb, -np.inf)
-    om_lo, om_hi = np.empty(nb), np.empty(nb)
-    z = np.array([p["amplitude"], omega0])
-    # col, first step of the next column (ceil((n+1)/nb)), next sample, left, bad
-    where = np.array([0, (n + 1 + nb - 1) // nb, 0, -1, -1], dtype=np.int64)
-
-    def run(i0: int, i1: int) -> bool:
-        scan(code, order, p["amplitude"], c, h, n, i0, i1, z, where, samples, s_th, s_om,
-             i_lo, i_hi, th_lo, th_hi, om_lo, om_hi, e_i_lo, e_i_hi, e_lo, e_hi, omega0)
-        return False
-
-    run_pieces(pieces(n + 1, max(1, int(CHUNK_COST / cost_per_step(p["method"])))), run)
-    left, bad = int(where[3]), int(where[4])
-    idx, theta = columns(i_lo, th_lo, i_hi, th_hi)
-    _, omega = columns(i_lo, om_lo, i_hi, om_hi)
-    e_idx, drift = columns(e_i_lo, e_lo, e_i_hi, e_hi)
+    rec = stream.run(code, order, p["amplitude"], omega0, c, h, n, nb, samples,
+                     max(1, int(CHUNK_COST / cost_per_step(p["method"]))))
+    left, bad = int(rec.where[stream.LEFT]), int(rec.where[stream.BAD])
+    val, at = rec.value, rec.step
+    idx, theta = columns(at[stream.I_LO], val[stream.TH_LO], at[stream.I_HI], val[stream.TH_HI])
+    _, omega = columns(at[stream.I_LO], val[stream.OM_LO], at[stream.I_HI], val[stream.OM_HI])
+    e_idx, drift = columns(at[stream.E_I_LO], val[stream.E_LO], at[stream.E_I_HI], val[stream.E_HI])
+    s_th, s_om = rec.s_theta, rec.s_omega
     pos = np.searchsorted(samples, phase_idx)
     fpos = np.searchsorted(samples, frame_idx)
     epos = np.searchsorted(samples, error_idx)
