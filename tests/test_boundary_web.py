@@ -128,3 +128,19 @@ def test_degrees_are_echoed_as_typed(client):
     assert r.status_code == 422 and r.json()["error"]["value"] == "-10"
     ok = client.get("/api/period", params={"length": "1", "amplitude": "45", "unit": "deg"}).json()
     assert ok["amplitude"] == math.pi / 4
+
+
+@settings(max_examples=40, deadline=60_000, suppress_health_check=[HealthCheck.function_scoped_fixture])
+@given(amplitude=st.one_of(st.sampled_from([5e-324, 1e-300, 1e-10, 3.1415926535897931 - 1e-15]),
+                           st.floats(0.0, math.pi, exclude_max=True)),
+       length=st.floats(1e-3, 1e3), step=st.floats(1e-3, 1.5), method=st.sampled_from(["taylor2", "rk4", "verlet", "taylor:1"]))
+def test_a_run_without_an_estimate_is_an_answer_with_its_status(client, amplitude, length, step, method):
+    # Any pendulum at rest below pi and any step the run allows: the estimate, or its absence
+    # with the search's status and one line why; never a refusal because no period was found.
+    q = {"length": repr(length), "amplitude": repr(amplitude), "step": repr(step), "t_max": "2", "method": method}
+    r = client.get("/api/simulate", params=q)
+    assert r.status_code == 200, r.text[:300]
+    period = r.json()["period"]
+    assert (period["estimate"] is None) == (period["status"] != "found") == (period["reason"] is not None)
+    if period["reason"] is not None:
+        assert "\n" not in period["reason"] and "--" not in period["reason"]

@@ -14,6 +14,7 @@ import numpy as np
 import pytest
 from fastapi.testclient import TestClient
 
+import plain_pendulum
 import reference
 from pendulab import methods, taylor
 from pendulab.cli import main
@@ -217,6 +218,46 @@ def test_simulate_without_period_says_why(client):
     assert body["period"]["estimate"] is None and "over the top" in body["period"]["reason"]
 
 
+@pytest.mark.parametrize("query, status, words", [
+    # rk4 at h = 1 s on a 2 s pendulum: no sign change near P within 1.5 T + 4h.
+    ({"length": "1", "amplitude": "0.5", "step": "1", "t_max": "20", "method": "rk4"}, "no_return", "does not return"),
+    # h = 0.8 s: theta' changes sign at the first or second step, before two earlier points exist.
+    ({"length": "1", "amplitude": "0.1", "step": "0.8", "t_max": "20", "method": "rk4"}, "too_early", "too early"),
+    ({"length": "1", "amplitude": "0", "step": "0.01", "t_max": "2"}, "not_run", "at rest"),
+    ({"length": "1", "amplitude": "1", "step": "0.01", "t_max": "2", "omega0": "1"}, "not_run", "release at rest"),
+])
+def test_no_estimate_has_a_status_and_a_reason(client, query, status, words):
+    from pendulab.crossing import search_period
+
+    period = client.get("/api/simulate", params=query).json()["period"]
+    assert (period["estimate"], period["status"]) == (None, status) and words in period["reason"]
+    if status == "no_return":  # the search's own span, 1.5 T + 4h, is what it names
+        s = search_period(1.0, 0.5, 1.0, method="rk4")
+        assert f"{s.t_max:.4g} s" in period["reason"] and "--t-max" not in period["reason"]
+    rows = client.get("/api/convergence", params=query | {"steps": query["step"]}).json()["rows"] if status != "not_run" else []
+    assert all((r["estimate"], r["status"]) == (None, status) and words in r["reason"] for r in rows)
+
+
+def test_over_the_top_is_the_time_the_plain_program_finds(client):
+    # The coursework's program (3) from 4 pi/5 with h = 0.5 s: the first t_j with |theta| > pi.
+    kind, t = plain_pendulum.first_event(1.0, 0.5, 20.0)
+    assert kind == "leaves"
+    body = client.get("/api/simulate", params={"length": "1", "amplitude": "4pi/5", "step": "0.5", "t_max": "20"}).json()
+    period = body["period"]
+    assert (period["estimate"], period["status"]) == (None, "left_oscillation")
+    assert f"t = {t:.6g} s" in period["reason"] and "step h = 0.5 s is too large" in period["reason"]
+    assert body["flags"]["left_oscillation_t"] == t  # the streamed pass and the search see the same step
+    ok = client.get("/api/simulate", params=P5_QUERY).json()["period"]
+    assert ok["status"] == "found" and ok["reason"] is None and ok["estimate"]["j"] > 0
+
+
+def test_an_underflowing_search_says_which_amplitude_works():
+    # h (g/l) alpha = 1e-6 x 1 x 1e-303 is below the smallest normal double: theta' never moves.
+    est = views.estimate_view(1.0, 1e-303, 1e-6, 1.0, "taylor2")
+    assert (est["estimate"], est["status"]) == (None, "no_return")
+    assert "amplitude >= 2.23e-302 rad" in est["reason"]
+
+
 def test_simulate_blow_up_is_valid_json_and_flagged(client):
     # h = 1 with c = -9.8: the Taylor map is unstable, theta overflows to inf then NaN.
     r = client.get("/api/simulate", params={"length": "1", "amplitude": "3", "step": "1", "t_max": "2000", "points": "3000"})
@@ -408,6 +449,7 @@ def test_more_than_1e7_steps_is_refused(client, endpoint):
     if endpoint == "/api/simulate":
         est = r.json()["period"]
         assert est["estimate"] is None and "1e+07" in est["reason"] and "step" in est["reason"]
+        assert est["status"] == "not_run"
         assert r.json()["n_steps"] == 10_000
     else:
         assert len(r.text.splitlines()) == 1 + 10_001

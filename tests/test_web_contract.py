@@ -61,6 +61,8 @@ ANSWERS = [
     ("/api/simulate", {"length": "3.5", "amplitude": "144", "unit": "deg", "step": "1e-3", "t_max": "20", "points": "3000"}),
     ("/api/simulate", {"length": "1", "amplitude": "3", "step": "1", "t_max": "2000"}),  # blows up: nulls
     ("/api/simulate", {"length": "1", "amplitude": "0", "step": "0.01", "t_max": "2"}),  # no estimate
+    ("/api/simulate", {"length": "1", "amplitude": "0.5", "step": "1", "t_max": "20", "method": "rk4"}),  # no return
+    ("/api/simulate", {"length": "1", "amplitude": "0.1", "step": "0.8", "t_max": "20", "method": "rk4"}),  # too early
     ("/api/simulate", {"length": "1e300", "amplitude": "1", "step": "1e-3", "t_max": "20"}),  # shorter than a period
     ("/api/convergence", {"length": "1", "amplitude": "pi/4", "method": "rk4"}),
     ("/api/convergence", {"length": "1", "amplitude": "3", "steps": "0.5,0.1"}),  # a row without an estimate

@@ -78,8 +78,14 @@ class Estimate(_Model):
     period: float = Field(description="the AGM period (converged), s")
 
 
+#: The period search's outcome (``crossing.PeriodSearch.status``), or ``not_run`` where the
+#: search does not run (the period too long for the step, a pendulum at rest, a launch).
+SearchStatus = Literal["found", "no_return", "left_oscillation", "too_early", "not_run"]
+
+
 class PeriodWithEstimate(PeriodAnswer):
     estimate: Estimate | None
+    status: SearchStatus
     reason: str | None = Field(description="why there is no estimate (no return, over the top, too long)")
 
 
@@ -198,6 +204,7 @@ class SimulateAnswer(_Model):
 class ConvergenceRow(_Model):
     step: float
     estimate: Estimate | None
+    status: SearchStatus
     reason: str | None
 
 

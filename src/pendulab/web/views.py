@@ -1,7 +1,7 @@
 """The explorer's answers: checked parameters in, JSON-ready dicts (or CSV text) out.
 
 A presenter, like the CLI: it reads the query with :mod:`pendulab.web.parameters`, calls
-:func:`pendulab.crossing.estimate_period`, :func:`pendulab.period.agm_period` and the
+:func:`pendulab.crossing.search_period`, :func:`pendulab.period.agm_period` and the
 streamed pass of :mod:`pendulab.web.sampling`, and renders their results; the shape of
 each answer is :mod:`pendulab.web.models`. Every bad input raises
 :class:`pendulab.errors.InputError` (the route turns it into status 422 naming the field
@@ -12,18 +12,22 @@ from __future__ import annotations
 
 import functools
 import math
+import sys
 from collections.abc import Iterator, Mapping
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
 from .. import _validate as v
 from .. import inputs
 from ..cases import PROBLEM5, G
-from ..errors import InputError, PendulabError
-from ..methods import resolve
+from ..errors import InputError
+from ..methods import Status, resolve
 from . import limits, parameters, sampling
 from .sampling import finite_list
+
+if TYPE_CHECKING:
+    from ..crossing import PeriodSearch
 
 __all__ = ["config_view", "convergence_view", "motion_view", "period_curve_view", "period_endpoint",
            "simulate_view", "trajectory_csv", "warm"]
@@ -65,21 +69,26 @@ def period_view(length: float, amplitude: float, g: float) -> dict[str, Any]:
 def estimate_view(length: float, amplitude: float, step: float, g: float, method: str) -> dict[str, Any]:
     """The period estimated from a streamed simulation, or why there is none.
 
-    Returns ``{"estimate": {...}}`` with the bracket ``[t_j, t_{j+1}]``, its midpoint, the
-    linear and inverse-cubic (problem 3(d)) estimates and their absolute errors against
-    the AGM period, or ``{"estimate": None, "reason": "..."}``.
+    Returns ``{"estimate": {...}, "status": "found", "reason": None}`` with the bracket
+    ``[t_j, t_{j+1}]``, its midpoint, the linear and inverse-cubic (problem 3(d)) estimates
+    and their absolute errors against the AGM period; else ``estimate`` None, the search's
+    status (:class:`pendulab.crossing.PeriodSearch`; ``not_run`` where the search does not
+    run) and a line saying why.
     """
-    from ..crossing import default_t_max, estimate_period
+    from ..crossing import default_t_max, search_period
     from ..period import agm_period
 
     exact = float(agm_period(length, amplitude, g))
     span = default_t_max(exact, step)
     if reason := limits.search_too_long(span, step, exact, resolve(method)):
-        return {"estimate": None, "reason": reason}  # the period is too long for this step: say so, keep the rest
-    try:
-        e = estimate_period(length, amplitude, step, g=g, method=method)
-    except PendulabError as exc:  # no return, went over the top, amplitude 0: a result, not a bad request
-        return {"estimate": None, "reason": " ".join(str(exc).split())}
+        return {"estimate": None, "status": NOT_RUN, "reason": reason}  # the period is too long for this step: say so, keep the rest
+    if amplitude == 0:
+        return {"estimate": None, "status": NOT_RUN,
+                "reason": "amplitude 0: released at rest at the bottom the pendulum does not move, so it has no period to find"}
+    s = search_period(length, amplitude, step, g=g, method=method)
+    if s.estimate is None:
+        return {"estimate": None, "status": s.status.name.lower(), "reason": search_reason(s)}
+    e = s.estimate
     mid = 0.5 * (e.bracket[0] + e.bracket[1])
     return {
         "estimate": {
@@ -98,8 +107,33 @@ def estimate_view(length: float, amplitude: float, step: float, g: float, method
             },
             "period": e.period,
         },
+        "status": "found",
         "reason": None,
     }
+
+
+#: The status of an estimate whose search does not run (too long, at rest, launched).
+NOT_RUN = "not_run"
+
+
+def search_reason(s: PeriodSearch) -> str:
+    """Why a period search (:func:`pendulab.crossing.search_period`) found no period, from its
+    status and data, in the page's words (the search's ``t_max`` is the page's, not the reader's)."""
+    if s.underflow:
+        k = s.g / s.length
+        return (f"amplitude {s.amplitude:.3g} rad is too small for a simulation in double precision: theta' changes by "
+                f"about h (g/l) alpha = {k * s.step * s.amplitude:.3g} rad/s per step, below the smallest normal double "
+                f"{sys.float_info.min:.3g}, so its sign changes are lost; use an amplitude >= "
+                f"{sys.float_info.min / (k * s.step):.3g} rad or a larger step")
+    if s.status == Status.LEFT_OSCILLATION:
+        return (f"the discrete pendulum went over the top (|theta| >= pi) at t = {s.t_left:.6g} s, which the real one "
+                f"released at rest below pi never does: step h = {s.step:g} s is too large for amplitude "
+                f"{s.amplitude:.6g} rad with {s.method}; use a smaller step")
+    if s.status == Status.NO_RETURN:
+        return (f"the simulation does not return to P = (alpha, 0) within the search's 1.5 T + 4h = {s.t_max:.4g} s "
+                f"(T = {s.period:.6g} s, the exact period): its motion is far from the pendulum's; use a smaller step")
+    return (f"the sign change of theta' comes at step j = {s.j}, too early for the interpolation's nodes before it: "
+            f"step h = {s.step:g} s is too large; use a smaller step")
 
 
 def exact_state(p: Mapping[str, Any], t: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
@@ -214,7 +248,7 @@ def simulate_view(params: Mapping[str, str]) -> dict[str, Any]:
     if launched is None:
         est = estimate_view(p["length"], p["amplitude"], p["step"], p["g"], p["method"])
     else:  # the coursework's estimate times a release at rest; a launch has its period from pendulab.launched
-        est = {"estimate": None, "reason": (
+        est = {"estimate": None, "status": NOT_RUN, "reason": (
             f"the period is estimated from a release at rest; this pendulum is launched with theta'(0) = {p['omega0']:g} "
             f"rad/s: its exact {'time for one turn' if launched['circulates'] else 'period'} is shown")}
     sim = sampling.simulate_arrays(p, points)
