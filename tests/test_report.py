@@ -243,6 +243,7 @@ def test_cli_writes_the_report(tmp_path, capsys):
     err = capsys.readouterr().err
     assert "\x1b[" not in err  # no progress display when stderr is not a terminal
     assert gc.isenabled()  # the cycle collector, paused for the report, is back
+    assert gc.get_freeze_count() == 0  # and the report's objects are its to free, none kept frozen
 
 
 def test_cli_pauses_the_cycle_collector_only_while_building(monkeypatch, tmp_path):

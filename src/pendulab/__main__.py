@@ -1,4 +1,5 @@
 """``python -m pendulab``, and the ``pendulab`` command's entry point (:func:`run`)."""
+import gc
 import signal
 import sys
 
@@ -20,6 +21,11 @@ def run() -> int:
     # signal would end the process by that signal instead (no line, another status).
     # Blocked from here, it stays pending until the process has exited with its status.
     signal.pthread_sigmask(signal.SIG_BLOCK, {signal.SIGINT, signal.SIGTERM})
+    # Nor does the shutdown need the cycle collector: its last passes would examine and
+    # free, one by one, every object the command made (after a report, over a tenth of
+    # its CPU time), memory the system takes back at once when the process ends. Outputs
+    # are written atomically and closed by then; Python flushes stdout and stderr itself.
+    gc.freeze()
     return code
 
 

@@ -74,6 +74,11 @@ def report(more: tuple[str, ...], students: str, lang: str, output: str, names: 
     try:
         written = build_report(numbers, lang=lang, output=output, progress=True, names=cover)
     finally:
+        # Every object the report made moves to the oldest generation unexamined: else the
+        # first collection after gc.enable() would pass over all of them (as long as a
+        # figure takes). A later full collection frees them; the command line exits first.
+        gc.freeze()
+        gc.unfreeze()
         if was:
             gc.enable()
     click.echo(f"pendulab: wrote {output}", err=True)
