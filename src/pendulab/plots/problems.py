@@ -24,12 +24,14 @@ def fit(result: Problem4, ax: Axes | None = None, show_exact: bool = False, titl
         labels: dict[str, str] | None = None) -> Axes:
     """4(d)(i): every data point ``(t_j, z1_j)`` and the least-squares ``phi~`` on one plot.
 
-    ``result`` is a :class:`pendulab.problems.Problem4`. Returns ``ax``.
+    ``result`` is a :class:`pendulab.problems.Problem4`. ``labels`` replaces the legend's
+    and the axes' words (keys ``data``, ``fit``, ``exact``, ``x``, ``y``). Returns ``ax``.
     """
     ax = axes(ax)
     t, y = result.data.t, result.data.theta
     words = {"data": f"data $(t_j, z_{{1,j}})$, {len(t)} points",
-             "fit": r"least squares $\tilde\phi(t)$, basis (10)", "exact": r"exact $\theta(t)$"} | (labels or {})
+             "fit": r"least squares $\tilde\phi(t)$, basis (10)", "exact": r"exact $\theta(t)$",
+             "x": "t (s)", "y": r"$z_{1,j}$, $\tilde\phi(t)$ (rad)"} | (labels or {})
     # The curve wide and light underneath, every point small and dark over it: the fit
     # passes through the data, and both stay visible.
     ax.plot(result.curve_t, result.curve_phi, "-", color="C3", alpha=0.45, linewidth=2.4, zorder=2,
@@ -37,8 +39,8 @@ def fit(result: Problem4, ax: Axes | None = None, show_exact: bool = False, titl
     ax.plot(t, y, "o", markersize=1.1, color="C0", markeredgewidth=0, zorder=3, label=words["data"])
     if show_exact:
         ax.plot(result.curve_t, result.curve_exact, ":", color="0.3", linewidth=1, label=words["exact"])
-    ax.set_xlabel("t (s)")
-    ax.set_ylabel(r"$z_{1,j}$, $\tilde\phi(t)$ (rad)")
+    ax.set_xlabel(words["x"])
+    ax.set_ylabel(words["y"])
     if title:
         ax.set_title(
             rf"$l = {result.length:g}$, $\alpha = {result.amplitude:.6g}$, $h = {result.step:g}$; "
@@ -50,13 +52,15 @@ def fit(result: Problem4, ax: Axes | None = None, show_exact: bool = False, titl
     return ax
 
 
-def fit_residuals(result: Problem4, ax: Axes | None = None) -> Axes:
+def fit_residuals(result: Problem4, ax: Axes | None = None, labels: dict[str, str] | None = None) -> Axes:
     """The deviations ``z1_j - phi~(t_j)`` of problem 4 and the band ``+-tolerance`` of 4(d)(ii).
 
     The y axis is linear inside the band and logarithmic beyond (``symlog``): deviations
-    hundreds of times the tolerance and the band itself show on one plot. Returns the axes drawn on.
+    hundreds of times the tolerance and the band itself show on one plot. ``labels``
+    replaces the axis labels (keys ``x``, ``y``). Returns the axes drawn on.
     """
     ax = axes(ax)
+    words = {"x": "t (s)", "y": r"$z_{1,j} - \tilde\phi(t_j)$ (rad)"} | (labels or {})
     tol = result.tolerance
     ax.axhspan(-tol, tol, color="C3", alpha=0.18, linewidth=0, zorder=1)
     for s in (1, -1):
@@ -64,8 +68,8 @@ def fit_residuals(result: Problem4, ax: Axes | None = None) -> Axes:
     ax.axhline(0, color="0.6", linewidth=0.5, zorder=2)
     ax.plot(result.data.t, result.fit.residuals, "-", color="C2", linewidth=0.8, zorder=3)
     ax.set_yscale("symlog", linthresh=tol, linscale=1.0)
-    ax.set_xlabel("t (s)")
-    ax.set_ylabel(r"$z_{1,j} - \tilde\phi(t_j)$ (rad)")
+    ax.set_xlabel(words["x"])
+    ax.set_ylabel(words["y"])
     ax.grid(alpha=0.3, linewidth=0.4)
     return ax
 

@@ -13,14 +13,18 @@ if TYPE_CHECKING:
     from ..taylor import Trajectory
 
 
-def time_series(trajectory: Trajectory, ax: Axes | None = None, title: bool = True, **style: Any) -> Axes:
-    """Figure 1: the points ``(t_j, z1_j)`` of a simulation. Returns the axes drawn on."""
+def time_series(trajectory: Trajectory, ax: Axes | None = None, title: bool = True,
+                labels: dict[str, str] | None = None, **style: Any) -> Axes:
+    """Figure 1: the points ``(t_j, z1_j)`` of a simulation. Returns the axes drawn on.
+
+    ``labels`` replaces the axis labels (keys ``x``, ``y``)."""
     ax = axes(ax)
+    words = {"x": "t (s)", "y": r"$z_{1,j} \approx \theta(t_j)$ (rad)"} | (labels or {})
     kw: dict[str, Any] = {"marker": "o", "markersize": 3, "linestyle": "none", "color": "C0"} | style
     ax.plot(trajectory.t, trajectory.theta, **kw)
     ax.axhline(0, color="0.7", linewidth=0.6)
-    ax.set_xlabel("t (s)")
-    ax.set_ylabel(r"$z_{1,j} \approx \theta(t_j)$ (rad)")
+    ax.set_xlabel(words["x"])
+    ax.set_ylabel(words["y"])
     if title:
         ax.set_title(
             rf"$l = {trajectory.length:.10g}$, $\alpha = {trajectory.amplitude:.6g}$, $h = {trajectory.step:g}$",
@@ -30,14 +34,17 @@ def time_series(trajectory: Trajectory, ax: Axes | None = None, title: bool = Tr
 
 
 def phase_portrait(trajectory: Trajectory, ax: Axes | None = None, max_arrows: int = 400,
-                   arrow_width: float = 0.006) -> Axes:
+                   arrow_width: float = 0.006, labels: dict[str, str] | None = None) -> Axes:
     """Figure 2: phase points ``Z_j = (z1_j, z2_j)`` joined by arrows, ``P = (alpha, 0)`` circled.
 
     Long trajectories are thinned to about ``max_arrows`` arrows. ``arrow_width`` is the
     shaft's width as a fraction of the axes' width; the heads scale with it, so a figure
-    printed a few centimetres wide keeps visible heads. Returns the axes drawn on.
+    printed a few centimetres wide keeps visible heads. ``labels`` replaces the axis
+    labels and the legend's (keys ``x``, ``y``, ``P``). Returns the axes drawn on.
     """
     ax = axes(ax)
+    words = {"x": r"$z_1 \approx \theta$ (rad)", "y": r"$z_2 \approx \theta'$ (rad/s)",
+             "P": r"$P = (\alpha, 0)$"} | (labels or {})
     z1, z2 = trajectory.theta, trajectory.omega
     stride = max(1, len(z1) // max_arrows)
     x, y = z1[::stride], z2[::stride]
@@ -48,10 +55,10 @@ def phase_portrait(trajectory: Trajectory, ax: Axes | None = None, max_arrows: i
     )
     ax.plot(x, y, "o", markersize=2, color="C0")
     ax.plot([trajectory.amplitude], [0.0], "o", markersize=12, markerfacecolor="none",
-            markeredgecolor="C3", markeredgewidth=1.3, label=r"$P = (\alpha, 0)$")
+            markeredgecolor="C3", markeredgewidth=1.3, label=words["P"])
     ax.axhline(0, color="0.7", linewidth=0.6)
     ax.axvline(0, color="0.7", linewidth=0.6)
-    ax.set_xlabel(r"$z_1 \approx \theta$ (rad)")
-    ax.set_ylabel(r"$z_2 \approx \theta'$ (rad/s)")
+    ax.set_xlabel(words["x"])
+    ax.set_ylabel(words["y"])
     ax.legend(loc="upper left", fontsize="small")
     return ax

@@ -38,6 +38,17 @@ STYLE: Any = {
     "axes.unicode_minus": True,
 }
 
+#: The figures' formulas as plain Unicode text, the same in every language: a label in
+#: mathtext would load and run its parser (a fifth of the figures' time). The words of
+#: each language come from the catalogue.
+LABELS = {
+    "time": {"y": "z₁,ⱼ ≈ θ(tⱼ) (rad)"},
+    "phase": {"x": "z₁ ≈ θ (rad)", "y": "z₂ ≈ θ′ (rad/s)", "P": "P = (α, 0)"},
+    "fit": {"y": "z₁,ⱼ, φ̃(t) (rad)", "fit": "φ̃"},
+    "residual": {"y": "z₁,ⱼ − φ̃(tⱼ) (rad)"},
+    "convergence": {"x": "n", "guide": "∝ 1/√n"},
+}
+
 _SUPERSCRIPT = str.maketrans("0123456789-", "⁰¹²³⁴⁵⁶⁷⁸⁹⁻")
 
 

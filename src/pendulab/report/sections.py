@@ -138,6 +138,7 @@ def problem3(doc: Doc, students: Sequence[int]) -> None:
     from ..cases import G
     from ..plots.simulation import phase_portrait, time_series
     from ..taylor import Trajectory
+    from .figures import LABELS
 
     p = programs()
     p3, taylor = p["problem3.py"], p["taylor.py"]
@@ -188,8 +189,8 @@ def problem3(doc: Doc, students: Sequence[int]) -> None:
         doc.set(**{"p3b.left": num(ts[over], 6), "p3b.ratio": num(ts[over] / t_hat, 3)})
     t, z1, z2 = taylor.taylor(length, p3.ALPHA, h, t_max)
     plot = Trajectory(np.array(t), np.array(z1), np.array(z2), length, p3.ALPHA, G, h, 0.0)
-    doc.figure("p3b_time", lambda ax: time_series(plot, ax, title=False))
-    doc.figure("p3b_phase", lambda ax: phase_portrait(plot, ax))
+    doc.figure("p3b_time", lambda ax: time_series(plot, ax, title=False, labels=LABELS["time"]))
+    doc.figure("p3b_phase", lambda ax: phase_portrait(plot, ax, labels=LABELS["phase"]))
 
     # 3(c): the period against the step.
     estimates = [p3.period(length, step, t_hat) for step in p3.STEPS]
@@ -261,6 +262,7 @@ def problem4(doc: Doc, students: Sequence[int]) -> None:
     from .. import problems
     from ..cases import PROBLEM4_ALT_T_MAX
     from ..plots.problems import fit, fit_residuals
+    from .figures import LABELS
 
     p = programs()
     p4, taylor = p["problem4.py"], p["taylor.py"]
@@ -305,14 +307,15 @@ def problem4(doc: Doc, students: Sequence[int]) -> None:
     doc.choose("p4d.ii", "yes" if main["maxdev"] < p4.TOL else "no")
     doc.choose("p4.alt", "yes" if other["maxdev"] < p4.TOL else "no")
     w = doc.catalogue
-    doc.figure("p4d_fit", lambda ax: fit(r, ax, title=False, labels={"data": w["p4.fig.data"], "fit": r"$\tilde\phi$"}))
-    doc.figure("p4d_residual", lambda ax: fit_residuals(r, ax))
+    doc.figure("p4d_fit", lambda ax: fit(r, ax, title=False, labels=LABELS["fit"] | {"data": w["p4.fig.data"]}))
+    doc.figure("p4d_residual", lambda ax: fit_residuals(r, ax, labels=LABELS["residual"]))
 
 
 # ----------------------------------------------------------------------------- problem 5
 def problem5(doc: Doc, students: Sequence[int]) -> None:
     from .. import problems
     from ..plots.problems import GUIDE_OFFSET, quadrature_convergence
+    from .figures import LABELS
 
     p5 = programs()["problem5.py"]
     t_hat = programs()["agm.py"].t_hat(p5.L, p5.ALPHA)
@@ -325,9 +328,17 @@ def problem5(doc: Doc, students: Sequence[int]) -> None:
         num(sub[n].substitution_estimate, 16), sci(sub[n].substitution_error, 2),
     ] for n, period, error, rate in table[1:]]
     w = doc.catalogue
-    doc.figure("p5d_conv", lambda ax: quadrature_convergence(r, ax, labels={
-        "plain": w["p5.fig.plain"], "sub": w["p5.fig.sub"], "x": "n", "y": w["p5.fig.error"]}),
-        height=6.2 / 2.54)
+
+    def convergence(ax):
+        from matplotlib.ticker import NullLocator
+
+        quadrature_convergence(r, ax, labels=LABELS["convergence"] | {
+            "plain": w["p5.fig.plain"], "sub": w["p5.fig.sub"], "y": w["p5.fig.error"]})
+        # n = 1, 10, ..., 10^5: minor ticks between the powers of ten would mark no point
+        # (and would be most of the figure's ticks, each a few artists to draw).
+        ax.xaxis.set_minor_locator(NullLocator())
+
+    doc.figure("p5d_conv", convergence, height=6.2 / 2.54)
     single, ten, last = table[0], table[1], table[-1]
     conv = r.substitution_converged_n
     doc.set(**{
