@@ -87,7 +87,7 @@ def test_each_program_runs_without_pendulab(written, students):
         assert run(written, name, *students).strip(), name
     out = run(written, "problem3.py", *students)
     r = problems.problem3(tuple(students))
-    assert f"l = {r.group.text} m, T^ = {r.t_hat!r} s" in out
+    assert f"l = {r.group.length_text} m, T^ = {r.t_hat!r} s" in out
     assert f"t_max = {r.plot_t_max:.6g} s" in out
     for e in r.estimates:
         assert repr(e.linear) in out and repr(e.cubic) in out
@@ -111,7 +111,7 @@ def test_plain_outputs_against_the_spec(written):
 @given(groups)
 def test_length_rule_is_the_engines(students):
     g = group_length(students)
-    assert P["length.py"].group_length(students) == (g.total, [int(d) for d in g.digits], g.text)
+    assert P["length.py"].group_length(students) == (g.sum, [int(d) for d in g.digits], g.length_text)
 
 
 @settings(max_examples=40, deadline=None)
