@@ -25,10 +25,11 @@ import numpy as np
 
 from . import _validate as v
 from .cases import G
+from .results import Result
 
 
-@dataclass(frozen=True)
-class Launch:
+@dataclass(frozen=True, eq=False)
+class Launch(Result):
     """The kind of motion a launch gives: ``k``, libration or circulation, its period."""
 
     k: float

@@ -17,13 +17,14 @@ from collections.abc import Iterator, Mapping
 from typing import TYPE_CHECKING, Any
 
 import numpy as np
+from pydantic import BaseModel
 
 from .. import _validate as v
 from .. import inputs
 from ..cases import PROBLEM5, G
 from ..errors import InputError
 from ..methods import Status, resolve
-from . import limits, parameters, sampling
+from . import limits, models, parameters, sampling
 from .sampling import finite_list
 
 if TYPE_CHECKING:
@@ -88,28 +89,17 @@ def estimate_view(length: float, amplitude: float, step: float, g: float, method
     s = search_period(length, amplitude, step, g=g, method=method)
     if s.estimate is None:
         return {"estimate": None, "status": s.status.name.lower(), "reason": search_reason(s)}
-    e = s.estimate
-    mid = 0.5 * (e.bracket[0] + e.bracket[1])
-    return {
-        "estimate": {
-            "step": e.step,
-            "method": e.method,
-            "j": e.j,
-            "bracket": [e.bracket[0], e.bracket[1]],
-            "bracket_mid": mid,
-            "linear": _num(e.linear),
-            "cubic": _num(e.cubic),
-            "cubic_error_estimate": _num(e.cubic_error_estimate),
-            "errors": {
-                "bracket_mid": abs(mid - e.period),
-                "linear": _num(e.linear_error),
-                "cubic": _num(e.cubic_error),
-            },
-            "period": e.period,
-        },
-        "status": "found",
-        "reason": None,
-    }
+    e = s.estimate.to_dict()
+    mid = 0.5 * (e["bracket"][0] + e["bracket"][1])
+    errors = {"bracket_mid": abs(mid - e["period"]), "linear": _num(e["linear_error"]), "cubic": _num(e["cubic_error"])}
+    return {"estimate": _answer(models.Estimate, e) | {"bracket_mid": mid, "errors": errors},
+            "status": "found", "reason": None}
+
+
+def _answer(model: type[BaseModel], result: Mapping[str, Any]) -> dict[str, Any]:
+    """The entries of a result's ``to_dict()`` that the response ``model`` lists (the same
+    names), a float that is not finite as None; the model's other entries the caller adds."""
+    return {k: _num(v) if isinstance(v, float) else v for k, v in result.items() if k in model.model_fields}
 
 
 #: The status of an estimate whose search does not run (too long, at rest, launched).
@@ -316,9 +306,9 @@ def _launch_view(p: Mapping[str, Any], params: Mapping[str, str]) -> dict[str, A
     if not math.isfinite(info.period):
         raise InputError("omega0", inputs.shown(parameters.text(params, "omega0")),
                          "not exactly the speed that reaches the top (the separatrix, which takes forever)")
-    return {"omega0": p["omega0"], "k": info.k, "circulates": info.circulates, "period": info.period,
-            "turning_angle": info.turning_angle,
-            "turning_angle_deg": math.degrees(info.turning_angle) if info.turning_angle is not None else None}
+    turning = info.turning_angle
+    return _answer(models.Launch, info.to_dict()) | {
+        "omega0": p["omega0"], "turning_angle_deg": math.degrees(turning) if turning is not None else None}
 
 
 def trajectory_csv(params: Mapping[str, str]) -> tuple[Iterator[str], str]:
