@@ -1,7 +1,8 @@
 """The foundation's kernels against their peers, side by side in one run, as ratios.
 
-1. Taylor steps (3) per second, problem 3's pendulum, h = 1e-6: the numba trajectory kernel
-   and the streamed first-return search, each against the same loop in C (``cc -O2``,
+1. Taylor steps (3) per second, problem 3's pendulum, h = 1e-6: the trajectory driver and
+   the streamed first-return search, with the kernel code the library chooses there
+   (``kernel_code``: the certified table step), each against the same loop in C (``cc -O2``,
    compiled now) and the trajectory also against a plain Python loop. The trajectory is
    checked bit for bit against C over 5 000 000 steps, the search to the same return step,
    and both are timed over short runs (500 000 and 1 000 000 steps).
@@ -22,7 +23,7 @@ import mpmath
 import numpy as np
 from _peers import build_c, ptr, side_by_side
 
-from pendulab._kernels import TAYLOR2, fast_pays, fill_trajectory_fast, first_return
+from pendulab._kernels import TAYLOR2, TAYLOR2_FAST, drive, first_return, kernel_code
 from pendulab.period import agm_period
 
 G = 9.80665
@@ -41,8 +42,10 @@ def taylor_rows(dll, repeat: int = 5) -> list[dict]:
     alpha, c, h = 4 * math.pi / 5, -G / 2.0800838231, 1e-6
     n = 5_000_000
     z1, z2, c1, c2 = (np.empty(n + 1) for _ in range(4))
-    assert fast_pays(TAYLOR2, c, h, n)  # the kernel pendulab.taylor.simulate runs here
-    fill_trajectory_fast(alpha, c, h, z1, z2)
+    code = kernel_code(TAYLOR2, c, h)  # the code pendulab.taylor.simulate and the period search run here
+    assert code == TAYLOR2_FAST
+    z1[0], z2[0] = alpha, 0.0
+    drive(code, 2, alpha, 0.0, c, h, 0, n, 1, n, z1[1:], z2[1:])
     dll.taylor2(alpha, c, h, n, ptr(c1), ptr(c2))
     assert np.array_equal(z1, c1) and np.array_equal(z2, c2), "C and numba disagree"
     # Timed on short runs (500 000 steps), best of 8 x repeat rounds, both writing the same two
@@ -52,19 +55,19 @@ def taylor_rows(dll, repeat: int = 5) -> list[dict]:
     n_short = 500_000
     s1, s2 = z1[:n_short + 1], z2[:n_short + 1]
     t = side_by_side({
-        "numba": lambda: fill_trajectory_fast(alpha, c, h, s1, s2),
+        "numba": lambda: drive(code, 2, alpha, 0.0, c, h, 0, n_short, 1, n_short, s1[1:], s2[1:]),
         "C": lambda: dll.taylor2(alpha, c, h, n_short, ptr(z1), ptr(z2)),
     }, 8 * repeat)
     t = {k: v * n / n_short for k, v in t.items()}
     n_py = 200_000
     t_py = side_by_side({"py": lambda: python_loop(alpha, c, h, n_py)}, 1)["py"] * n / n_py
     m = 10_000_000
-    steps = first_return(TAYLOR2, 2, alpha, c, h, m)[1]
+    steps = first_return(code, 2, alpha, c, h, m)[1]
     assert dll.taylor2_return(alpha, c, h, m) == steps
     # Timed as the trajectory: short runs (10^6 steps, before the return), best of 8 x repeat.
     m_short = 1_000_000
     r = side_by_side({
-        "numba": lambda: first_return(TAYLOR2, 2, alpha, c, h, m_short),
+        "numba": lambda: first_return(code, 2, alpha, c, h, m_short),
         "C": lambda: dll.taylor2_return(alpha, c, h, m_short),
     }, 8 * repeat)
     r = {k: v * steps / m_short for k, v in r.items()}

@@ -1,15 +1,19 @@
 """The trajectory driver against the loops it replaces, and the certified fast step against the literal one.
 
 Side by side in one run (best of ``REPEAT`` rounds, taking turns), on the example group's
-pendulum (l = 2.0800838231 m, alpha = 4 pi/5) with the coursework's algorithm (3):
+pendulum (l = 2.0800838231 m, alpha = 4 pi/5):
 
-- ``fill_trajectory`` and ``fill_thinned`` (both now :func:`pendulab._kernels.drive`) and the
-  explorer's CSV blocks (``drive`` from a carried state) against the separate loops they
-  replace, compiled here as they were written: a plain loop, a thinning loop, and the web's
-  ``advance`` with its ``i % stride`` per step;
-- the literal step (the C library's sin and cos) against the table step with its rounding
-  certificate (``taylor2_fast_step``), at h = 1e-6 (the fine steps where the certificate
-  passes) and h = 1e-3.
+- :func:`pendulab._kernels.drive` (every step; one in 1000 kept; the explorer's CSV blocks
+  from a carried state) against separate loops compiled here as they would be written
+  without it: a plain loop, a thinning loop, the web's ``advance`` with its ``i % stride``
+  per step. These loops step through ``four_branches``, :func:`pendulab._kernels.step`
+  without its :data:`~pendulab._kernels.TAYLOR2_FAST` branch, so the rows also show what
+  that branch costs the other codes (rk4 and verlet too);
+- the literal step of (3) (the C library's sin and cos, code ``TAYLOR2``) against the
+  certified table step (``TAYLOR2_FAST``, the code :func:`pendulab._kernels.kernel_code`
+  chooses for fine steps) at h = 1e-6: (i) a trajectory of 10^6 steps through ``drive``,
+  (ii) the whole period search (``first_return``, about 3.9 * 10^6 steps); and the
+  trajectory at h = 1e-3, where ``kernel_code`` keeps the literal step.
 
 Every pair is checked to give the same bits before it is timed. Ratios are ours/baseline
 times: below 1 is faster. Run: ``.venv/bin/python benchmarks/bench_driver.py [--quick]``.
@@ -24,7 +28,19 @@ import numpy as np
 from _peers import side_by_side
 from numba import njit
 
-from pendulab._kernels import TAYLOR2, drive, fill_thinned, fill_trajectory, step, taylor2_fast_step
+from pendulab._kernels import (
+    RK4,
+    TAYLOR2,
+    TAYLOR2_FAST,
+    VERLET,
+    drive,
+    first_return,
+    kernel_code,
+    rk4_step,
+    taylor2_step,
+    taylor_step,
+    verlet_step,
+)
 
 G = 9.80665
 ALPHA, C = 4 * math.pi / 5, -G / 2.0800838231
@@ -32,13 +48,23 @@ REPEAT = 3 if "--quick" in sys.argv else 15
 
 
 # ------------------------------------------------------------------ the loops the driver replaces
+@njit(cache=True, nogil=True, inline="always")
+def four_branches(method, order, z1, z2, h, c):
+    """``pendulab._kernels.step`` with the integrators' branches only (no fast step)."""
+    if method == TAYLOR2:
+        return taylor2_step(z1, z2, h, c)
+    if method == RK4:
+        return rk4_step(z1, z2, h, c)
+    if method == VERLET:
+        return verlet_step(z1, z2, h, c)
+    return taylor_step(order, z1, z2, h, c)
+
+
 @njit(cache=True, nogil=True)
 def plain_loop(method, order, alpha, c, h, z1, z2):
     a, b = alpha, 0.0
-    z1[0] = a
-    z2[0] = b
-    for i in range(1, len(z1)):
-        a, b = step(method, order, a, b, h, c)
+    for i in range(len(z1)):
+        a, b = four_branches(method, order, a, b, h, c)
         z1[i] = a
         z2[i] = b
 
@@ -46,12 +72,10 @@ def plain_loop(method, order, alpha, c, h, z1, z2):
 @njit(cache=True, nogil=True)
 def thinning_loop(method, order, alpha, c, h, n, stride, z1, z2):
     a, b = alpha, 0.0
-    z1[0] = a
-    z2[0] = b
-    k = 1
+    k = 0
     keep = stride
     for i in range(1, n + 1):
-        a, b = step(method, order, a, b, h, c)
+        a, b = four_branches(method, order, a, b, h, c)
         if i == keep or i == n:  # noqa: SIM109
             z1[k] = a
             z2[k] = b
@@ -63,7 +87,7 @@ def thinning_loop(method, order, alpha, c, h, n, stride, z1, z2):
 def modulo_loop(method, order, z1, z2, c, h, i0, i1, stride, n, out1, out2, out_i):
     k = 0
     for i in range(i0 + 1, i1 + 1):
-        z1, z2 = step(method, order, z1, z2, h, c)
+        z1, z2 = four_branches(method, order, z1, z2, h, c)
         if i % stride == 0 or i == n:
             out1[k] = z1
             out2[k] = z2
@@ -72,48 +96,63 @@ def modulo_loop(method, order, z1, z2, c, h, i0, i1, stride, n, out1, out2, out_
     return z1, z2, k
 
 
-@njit(cache=True, nogil=True)
-def fast_loop(alpha, c, h, z1, z2):
-    a, b = alpha, 0.0
-    z1[0] = a
-    z2[0] = b
-    for i in range(1, len(z1)):
-        a, b = taylor2_fast_step(a, b, h, c)
-        z1[i] = a
-        z2[i] = b
+def _drive_all(code, order, h, z1, z2):
+    n = len(z1)
+    return drive(code, order, ALPHA, 0.0, C, h, 0, n, 1, n, z1, z2)
 
 
-def every_step_rows(n: int, h: float) -> list[dict]:
-    z1, z2, r1, r2 = (np.empty(n + 1) for _ in range(4))
-    fill_trajectory(TAYLOR2, 2, ALPHA, C, h, z1, z2)
-    plain_loop(TAYLOR2, 2, ALPHA, C, h, r1, r2)
+def every_step_row(code: int, order: int, name: str, h: float, n: int) -> dict:
+    z1, z2, r1, r2 = (np.empty(n) for _ in range(4))
+    _drive_all(code, order, h, z1, z2)
+    plain_loop(code, order, ALPHA, C, h, r1, r2)
     assert np.array_equal(z1, r1) and np.array_equal(z2, r2)
-    t = side_by_side({"driver": lambda: fill_trajectory(TAYLOR2, 2, ALPHA, C, h, z1, z2),
-                      "loop": lambda: plain_loop(TAYLOR2, 2, ALPHA, C, h, r1, r2)}, REPEAT)
-    out = [{"what": f"trajectory, every step, h = {h:g} (s per 10^6 steps)", "ours": t["driver"],
-            "peer_name": "the plain loop", "peer": t["loop"], "target": "<= 1.0x"}]
-    fast_loop(ALPHA, C, h, r1, r2)
+    t = side_by_side({"driver": lambda: _drive_all(code, order, h, z1, z2),
+                      "loop": lambda: plain_loop(code, order, ALPHA, C, h, r1, r2)}, REPEAT)
+    return {"what": f"drive, {name}, every step, h = {h:g} (s per 10^6 steps)", "ours": t["driver"] * 1e6 / n,
+            "peer_name": "plain loop, four branches", "peer": t["loop"] * 1e6 / n, "target": "<= 1.0x"}
+
+
+def fast_trajectory_row(h: float, n: int) -> dict:
+    """(i) a trajectory of ``n`` steps of (3), literal code against fast code."""
+    z1, z2, r1, r2 = (np.empty(n) for _ in range(4))
+    _drive_all(TAYLOR2, 2, h, z1, z2)
+    _drive_all(TAYLOR2_FAST, 2, h, r1, r2)
     assert np.array_equal(z1, r1) and np.array_equal(z2, r2)
-    t = side_by_side({"literal": lambda: fill_trajectory(TAYLOR2, 2, ALPHA, C, h, z1, z2),
-                      "fast": lambda: fast_loop(ALPHA, C, h, r1, r2)}, REPEAT)
-    out.append({"what": f"trajectory, literal step, h = {h:g} (s per 10^6 steps)", "ours": t["literal"],
-                "peer_name": "certified table step", "peer": t["fast"], "target": "decision"})
+    t = side_by_side({"literal": lambda: _drive_all(TAYLOR2, 2, h, z1, z2),
+                      "fast": lambda: _drive_all(TAYLOR2_FAST, 2, h, r1, r2)}, REPEAT)
+    chosen = "fast" if kernel_code(TAYLOR2, C, h) == TAYLOR2_FAST else "literal"
+    return {"what": f"(3) trajectory, 10^6 steps, h = {h:g}, literal step (s)", "ours": t["literal"],
+            "peer_name": "certified table step", "peer": t["fast"], "target": f"{chosen} chosen"}
+
+
+def fast_rows(n: int) -> list[dict]:
+    """(i) a trajectory of ``n`` steps and (ii) the period search, literal code against fast code."""
+    out = [fast_trajectory_row(1e-3, n), fast_trajectory_row(1e-6, n)]
+    h = 1e-6
+    m = 10_000_000
+    lit, fast = first_return(TAYLOR2, 2, ALPHA, C, h, m), first_return(TAYLOR2_FAST, 2, ALPHA, C, h, m)
+    assert lit[:2] == fast[:2] and np.array_equal(lit[2], fast[2]) and np.array_equal(lit[3], fast[3])
+    t = side_by_side({"literal": lambda: first_return(TAYLOR2, 2, ALPHA, C, h, m),
+                      "fast": lambda: first_return(TAYLOR2_FAST, 2, ALPHA, C, h, m)}, REPEAT)
+    out.append({"what": f"(3) period search, {lit[1] / 1e6:.2f} * 10^6 steps, h = {h:g}, literal step (s)",
+                "ours": t["literal"], "peer_name": "certified table step", "peer": t["fast"],
+                "target": "fast chosen"})
     return out
 
 
 def rows() -> list[dict]:
     n, stride = 1_000_000, 1000
-    out = every_step_rows(n, 1e-3) + every_step_rows(n, 1e-6)
+    out = [every_step_row(TAYLOR2, 2, "taylor2", 1e-3, n), every_step_row(RK4, 4, "rk4", 1e-3, n // 2),
+           every_step_row(VERLET, 2, "verlet", 1e-3, n)]
     h = 1e-3
-    size = n // stride + 2
+    size = n // stride + 1
     z1, z2, r1, r2 = (np.empty(size) for _ in range(4))
-    fill_thinned(TAYLOR2, 2, ALPHA, C, h, n, stride, z1, z2)
+    drive(TAYLOR2, 2, ALPHA, 0.0, C, h, 0, n, stride, n, z1, z2)
     thinning_loop(TAYLOR2, 2, ALPHA, C, h, n, stride, r1, r2)
-    kept = n // stride + 1
-    assert np.array_equal(z1[:kept], r1[:kept]) and np.array_equal(z2[:kept], r2[:kept])
-    t = side_by_side({"driver": lambda: fill_thinned(TAYLOR2, 2, ALPHA, C, h, n, stride, z1, z2),
+    assert np.array_equal(z1, r1) and np.array_equal(z2, r2)
+    t = side_by_side({"driver": lambda: drive(TAYLOR2, 2, ALPHA, 0.0, C, h, 0, n, stride, n, z1, z2),
                       "loop": lambda: thinning_loop(TAYLOR2, 2, ALPHA, C, h, n, stride, r1, r2)}, REPEAT)
-    out.append({"what": f"trajectory, 1 in {stride} kept, h = {h:g} (s per 10^6 steps)", "ours": t["driver"],
+    out.append({"what": f"drive, taylor2, 1 in {stride} kept, h = {h:g} (s per 10^6 steps)", "ours": t["driver"],
                 "peer_name": "the thinning loop", "peer": t["loop"], "target": "<= 1.0x"})
     # The explorer's CSV: blocks of 65536 steps from a carried state, 1 in 7 kept.
     block, stride = 65536, 7
@@ -139,7 +178,7 @@ def rows() -> list[dict]:
     t = side_by_side({"driver": by_driver, "loop": by_modulo}, REPEAT)
     out.append({"what": f"CSV blocks from a carried state, 1 in {stride} kept (s per 10^6 steps)",
                 "ours": t["driver"], "peer_name": "advance (i % stride)", "peer": t["loop"], "target": "<= 1.0x"})
-    return out
+    return out + fast_rows(n)
 
 
 if __name__ == "__main__":

@@ -1,10 +1,12 @@
 """The certified fast step of (3) (pendulab._kernels.taylor2_fast_step) equals the literal one bit for bit.
 
-``taylor2_fast_step`` takes ``sin`` and ``cos`` from a table and returns its own result only
-where a rounding test proves it equal to :func:`pendulab._kernels.taylor2_step` with the C
-library's functions. These tests check the table and its error against mpmath and the C
-library (the margins the test relies on, with a safety factor), the points of every driver
-against the literal loop over many pendulums and steps, and that the fallback is taken.
+``taylor2_fast_step`` takes ``sin`` and ``cos`` from a table (:mod:`pendulab._fast`) and
+returns its own result only where a rounding test proves it equal to
+:func:`pendulab._kernels.taylor2_step` with the C library's functions. These tests check the
+table and its error against mpmath and the C library (the margins the test relies on, with
+a safety factor), the points of the driver and the period search under both kernel codes
+against the literal loop over many pendulums and steps, that the fallback is taken, and
+that the library's runs take the fast code where :func:`pendulab._kernels.kernel_code` says.
 """
 import math
 
@@ -15,26 +17,21 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 from numba import njit
 
+from pendulab import _kernels
+from pendulab._fast import FAST_COS, FAST_MAX_K, FAST_SIN, certified_step, margins, table_sin_cos
 from pendulab._kernels import (
-    FAST_COS,
-    FAST_MAX_K,
-    FAST_MIN_STEPS,
-    FAST_SIN,
     FOUND,
+    RK4,
     TAYLOR2,
-    _certified_step,
-    _margins,
-    _table_sin_cos,
-    fast_pays,
-    fill_thinned,
-    fill_thinned_fast,
-    fill_trajectory,
-    fill_trajectory_fast,
+    TAYLOR2_FAST,
+    drive,
     first_return,
+    kernel_code,
     taylor2_fast_step,
     taylor2_step,
 )
 from pendulab._libm import cos, sin
+from pendulab.methods import Status
 from reference import G
 
 #: The margins must exceed the table's distance from the C library's values (plus half an
@@ -48,9 +45,9 @@ def _worst_fraction_of_margin(x):
     margins taken at the C library's values)."""
     ws = wc = 0.0
     for i in range(x.size):
-        s, co = _table_sin_cos(x[i])
+        s, co = table_sin_cos(x[i])
         gs, gc = sin(x[i]), cos(x[i])
-        ms, mc = _margins(x[i], gs, gc)
+        ms, mc = margins(x[i], gs, gc)
         ws = max(ws, (abs(s - gs) + 0.5 * 2.0**-52 * abs(gs)) / ms)
         wc = max(wc, (abs(co - gc) + 0.5 * 2.0**-52 * abs(gc)) / mc)
     return ws, wc
@@ -89,9 +86,9 @@ def test_table_sin_cos_error_against_mpmath():
     x = _angles(2000, 2)[::5]
     with mpmath.workdps(40):
         for v in x:
-            s, co = _table_sin_cos(v)
+            s, co = table_sin_cos(v)
             ts, tc = mpmath.sin(mpmath.mpf(v)), mpmath.cos(mpmath.mpf(v))
-            ms, mc = _margins(v, float(ts), float(tc))
+            ms, mc = margins(v, float(ts), float(tc))
             assert abs(mpmath.mpf(s) - ts) <= ms / (2 * SAFETY), v
             assert abs(mpmath.mpf(co) - tc) <= mc / (2 * SAFETY), v
 
@@ -113,7 +110,7 @@ def _compare_steps(alpha, c, h, n):
         if not (a == f1 and b == f2 and math.copysign(1.0, a) == math.copysign(1.0, f1)
                 and math.copysign(1.0, b) == math.copysign(1.0, f2)):
             bad += 1
-        if abs(K) <= FAST_MAX_K and not _certified_step(z1, z2, h, c, K)[0]:
+        if abs(K) <= FAST_MAX_K and not certified_step(z1, z2, h, c, K)[0]:
             fallbacks += 1
         z1, z2 = a, b
         i += 1
@@ -161,45 +158,94 @@ def _same(a, b):
 @settings(max_examples=60, deadline=None)
 @given(alpha=st.floats(1e-8, math.pi - 1e-9), log_h=st.floats(-7, math.log10(0.5)),
        log_c=st.floats(-3, 3), backwards=st.booleans())
-def test_kernels_equal_the_python_loop(alpha, log_h, log_c, backwards):
+def test_driver_equals_the_python_loop_under_both_codes(alpha, log_h, log_c, backwards):
     h, c = (-1 if backwards else 1) * 10.0**log_h, -(10.0**log_c)
     n = 3000
     ref1, ref2 = _python_loop(alpha, c, h, n)
-    keep = np.r_[np.arange(0, n + 1, 7), n]
-    for fill, thinned in ((fill_trajectory_fast, fill_thinned_fast),
-                          (lambda *a: fill_trajectory(TAYLOR2, 2, *a), lambda *a: fill_thinned(TAYLOR2, 2, *a))):
-        z1, z2 = np.empty(n + 1), np.empty(n + 1)
-        with np.errstate(all="ignore"):
-            fill(alpha, c, h, z1, z2)
-        assert _same(z1, ref1) and _same(z2, ref2)
-        t1, t2 = np.empty(n // 7 + 2), np.empty(n // 7 + 2)
-        with np.errstate(all="ignore"):
-            thinned(alpha, c, h, n, 7, t1, t2)
-        assert _same(t1, ref1[keep]) and _same(t2, ref2[keep])
+    keep = np.r_[np.arange(7, n + 1, 7), n]
+    for code in (TAYLOR2, TAYLOR2_FAST):
+        for stride, want in ((1, np.arange(1, n + 1)), (7, keep)):
+            z1, z2 = np.empty(n + 1), np.empty(n + 1)
+            with np.errstate(all="ignore"):
+                a, b, k = drive(code, 2, alpha, 0.0, c, h, 0, n, stride, n, z1, z2)
+            assert k == len(want) and _same(z1[:k], ref1[want]) and _same(z2[:k], ref2[want]), (code, stride)
+            assert _same(np.array([a, b]), np.array([ref1[n], ref2[n]]))
 
 
-def test_simulations_take_the_fast_kernels_where_they_pay():
-    from pendulab import taylor
+def test_kernel_code_chooses_the_fast_step_for_fine_steps_of_3():
+    c = -G / 2.0800838231
+    h_max = math.sqrt(2 * FAST_MAX_K / -c)  # the coarsest step the table step is tried at
+    assert kernel_code(TAYLOR2, c, 1e-6) == TAYLOR2_FAST
+    assert kernel_code(TAYLOR2, c, -1e-6) == TAYLOR2_FAST  # backwards in time as well
+    assert kernel_code(TAYLOR2, c, math.nextafter(h_max, 0) * (1 - 1e-12)) == TAYLOR2_FAST
+    assert kernel_code(TAYLOR2, c, h_max * (1 + 1e-12)) == TAYLOR2  # coarse: the test would fail too often
+    assert kernel_code(TAYLOR2, c, 1e-2) == TAYLOR2
+    assert kernel_code(RK4, c, 1e-6) == RK4  # another method keeps its own code
+    assert kernel_code(3, c, 1e-6) == 3  # taylor:P, even P = 2
+
+
+def _codes_used(monkeypatch, name):
+    """Record the kernel code of every call of ``_kernels.<name>`` (the library's driver or search)."""
+    seen = []
+    kernel = getattr(_kernels, name)
+
+    def spy(code, *args):
+        seen.append(code)
+        return kernel(code, *args)
+
+    monkeypatch.setattr(_kernels, name, spy)
+    return seen
+
+
+@pytest.mark.parametrize(("h", "code"), [(1e-5, TAYLOR2_FAST), (1e-2, TAYLOR2)])
+def test_the_library_runs_the_chosen_code(monkeypatch, h, code):
+    """simulate (every point, thinned) and the period search run kernel_code's code, and
+    simulate gives the coursework loop's points, bit for bit."""
+    from pendulab import crossing, taylor
 
     c = -G / 2.0800838231
-    assert fast_pays(TAYLOR2, c, 1e-5, FAST_MIN_STEPS)
-    assert not fast_pays(TAYLOR2, c, 1e-5, FAST_MIN_STEPS - 1)  # short: the literal kernel
-    assert not fast_pays(TAYLOR2, c, 1e-2, 10**6)  # coarse: the test would fail too often
-    assert not fast_pays(1, c, 1e-5, 10**6)  # another method
-    # Through the library, long and thinned: the Python loop's points, bit for bit.
-    n = 2 * FAST_MIN_STEPS
-    ref1, ref2 = _python_loop(2.5, c, 1e-5, n)
-    full = taylor.simulate(2.0800838231, 2.5, 1e-5, n * 1e-5)
+    n = 20_000
+    ref1, ref2 = _python_loop(2.5, c, h, n)
+    driven = _codes_used(monkeypatch, "drive")
+    full = taylor.simulate(2.0800838231, 2.5, h, n * h)
     assert len(full.theta) == n + 1 and _same(full.theta, ref1) and _same(full.omega, ref2)
-    thin = taylor.simulate(2.0800838231, 2.5, 1e-5, n * 1e-5, stride=1000)
+    thin = taylor.simulate(2.0800838231, 2.5, h, n * h, stride=1000)
     assert _same(thin.theta, ref1[::1000]) and _same(thin.omega, ref2[::1000])
+    assert driven and set(driven) == {code}
+    searched = _codes_used(monkeypatch, "search_return")
+    crossing.search_period(2.0800838231, 2.5, h, t_max=20 * h)
+    assert searched and set(searched) == {code}
 
 
 @pytest.mark.parametrize(("alpha", "h"), [(4 * math.pi / 5, 1e-5), (0.3, 1e-4), (3.0, 1e-4), (1e-3, 1e-4)])
-def test_first_return_equals_the_python_loop(alpha, h):
+@pytest.mark.parametrize("code", [TAYLOR2, TAYLOR2_FAST])
+def test_first_return_equals_the_python_loop(alpha, h, code):
     c = -G / 2.0800838231
-    status, j, z1w, z2w = first_return(TAYLOR2, 2, alpha, c, h, int(10 / h))
+    status, j, z1w, z2w = first_return(code, 2, alpha, c, h, int(10 / h))
     assert status == FOUND
     ref1, ref2 = _python_loop(alpha, c, h, j + 2)
     assert np.array_equal(z1w, ref1[j - 2:j + 3]) and np.array_equal(z2w, ref2[j - 2:j + 3])
     assert ref2[j] > 0.0 >= ref2[j + 1]
+
+
+@pytest.mark.parametrize(("length", "alpha"), [(2.0800838231, 4 * math.pi / 5), (0.25, 0.2), (9.0, 3.1)])
+def test_period_search_with_the_fast_code_equals_the_literal_one_at_a_fine_step(monkeypatch, length, alpha):
+    """search_period at h = 1e-6 (millions of steps, thousands of them through the fallback):
+    the same status, the same j, the same window and the same estimates, bit for bit, with the
+    fast code (chosen) and with the literal one (forced)."""
+    from pendulab import crossing
+
+    h = 1e-6
+    assert kernel_code(TAYLOR2, -G / length, h) == TAYLOR2_FAST
+    searched = _codes_used(monkeypatch, "search_return")
+    fast = crossing.search_period(length, alpha, h)
+    assert set(searched) == {TAYLOR2_FAST}
+    searched.clear()
+    monkeypatch.setattr(_kernels, "kernel_code", lambda method, c, h: method)
+    literal = crossing.search_period(length, alpha, h)
+    assert set(searched) == {TAYLOR2}
+    assert fast.status == literal.status == Status.FOUND
+    e, f = fast.estimate, literal.estimate
+    assert e.j == f.j and e.j > 10**5
+    assert _same(e.window_theta, f.window_theta) and _same(e.window_omega, f.window_omega)
+    assert _same(np.array([e.linear, e.cubic, e.dense]), np.array([f.linear, f.cubic, f.dense]))

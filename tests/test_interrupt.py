@@ -20,12 +20,11 @@ METHODS = [(0, 2), (1, 4), (2, 2), (3, 1), (3, 5), (3, 12)]  # taylor2, rk4, ver
 
 
 def _one_call(method, order, alpha, c, h, n):
-    """The whole run in one kernel call: the reference for the pieces."""
+    """The whole run in one call of the driver (the kernel code the library chooses): the
+    reference for the pieces."""
     z1, z2 = np.empty(n + 1), np.empty(n + 1)
-    if _kernels.fast_pays(method, c, h, n):
-        _kernels.fill_trajectory_fast(alpha, c, h, z1, z2)
-    else:
-        _kernels.fill_trajectory(method, order, alpha, c, h, z1, z2)
+    z1[0], z2[0] = alpha, 0.0
+    _kernels.drive(_kernels.kernel_code(method, c, h), order, alpha, 0.0, c, h, 0, n, 1, n, z1[1:], z2[1:])
     return z1, z2
 
 
@@ -38,7 +37,7 @@ def test_pieces_give_the_same_bits_as_one_call(m, alpha, h, n, stride, piece):
     method, order = m
     c = -9.80665 / 2.0
     ref1, ref2 = _one_call(method, order, alpha, c, h, n)
-    one = _kernels.first_return(method, order, alpha, c, h, n)
+    one = _kernels.first_return(_kernels.kernel_code(method, c, h), order, alpha, c, h, n)
     with pytest.MonkeyPatch.context() as mp:
         mp.setattr(_kernels, "CHUNK_COST", piece * 50)  # pieces of piece * 50 / cost steps
         _cut(method, order, alpha, c, h, n, stride, ref1, ref2, one)
@@ -56,10 +55,12 @@ def _cut(method, order, alpha, c, h, n, stride, ref1, ref2, one):
 
 
 def test_fast_kernels_in_pieces_give_the_same_bits(monkeypatch):
-    """(3) long and fine runs through the table's sine (fast_pays), in pieces."""
-    alpha, c, h, n = 2.5, -9.80665 / 2.0800838231, 1e-5, _kernels.FAST_MIN_STEPS + 1234
-    assert _kernels.fast_pays(0, c, h, n)
+    """(3) long and fine runs through the table's sine (the fast kernel code), in pieces."""
+    alpha, c, h, n = 2.5, -9.80665 / 2.0800838231, 1e-5, 501_234
+    assert _kernels.kernel_code(0, c, h) == _kernels.TAYLOR2_FAST
     ref1, ref2 = _one_call(0, 2, alpha, c, h, n)
+    one = _kernels.first_return(_kernels.TAYLOR2_FAST, 2, alpha, c, h, n)
+    assert one[0] == _kernels.FOUND  # the period, about 4.8 s, within n h
     monkeypatch.setattr(_kernels, "CHUNK_COST", 9973)
     z1, z2 = _kernels.trajectory(0, 2, alpha, c, h, n)
     assert np.array_equal(z1, ref1) and np.array_equal(z2, ref2)
@@ -67,6 +68,8 @@ def test_fast_kernels_in_pieces_give_the_same_bits(monkeypatch):
         keep = np.r_[np.arange(0, n + 1, stride), [n] if n % stride else []].astype(int)
         t1, t2 = _kernels.thinned(0, 2, alpha, c, h, n, stride, len(keep))
         assert np.array_equal(t1, ref1[keep]) and np.array_equal(t2, ref2[keep])
+    cut = _kernels.first_return_pieces(0, 2, alpha, c, h, n)
+    assert cut[:2] == one[:2] and np.array_equal(cut[2], one[2]) and np.array_equal(cut[3], one[3])
 
 
 @given(n=st.integers(0, 500), size=st.integers(1, 60), stride=st.integers(1, 90))

@@ -23,7 +23,7 @@ PACKAGE = "pendulab"
 LAYERS: dict[str, tuple[str, ...]] = {
     "base": ("errors", "exact", "cases", "methods", "constants", "_version", "_atomic", "_extras", "_interrupt"),
     "boundary": ("inputs", "_validate"),
-    "kernels": ("_kernels", "_agm", "_mean", "_libm", "_warm", "_numba_cache"),
+    "kernels": ("_kernels", "_fast", "_agm", "_mean", "_libm", "_warm", "_numba_cache"),
     "numerics": ("results", "period", "taylor", "crossing", "dense", "interpolation", "newton", "lsq",
                  "quadrature", "uncertainty", "motion", "launched", "approximations", "group"),
     "jobs": ("problems", "key", "sweep", "coursework"),

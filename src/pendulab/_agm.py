@@ -72,7 +72,7 @@ def _sin_cos_table() -> np.ndarray:
     """Rows ``(sin y_i, cos y_i)`` as double-doubles, ``y_i = i/N_TABLE``, ``0 <= y_i <= pi + 1/N``.
 
     :func:`half_angle_cos` reads the rows up to ``pi/2 + 1/N``, the Taylor kernels' table
-    sine and cosine (``pendulab._kernels._table_sin_cos``) the leading doubles of all.
+    sine and cosine (``pendulab._fast.table_sin_cos``) the leading doubles of all.
     In 50-digit decimal arithmetic (the standard library's): the series of
     ``sin h, cos h`` at ``h = 1/N_TABLE`` (exact in decimal), then the rotation
     ``(s, c) -> (s cos h + c sin h, c cos h - s sin h)``, whose 800 steps lose about 6

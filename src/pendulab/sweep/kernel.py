@@ -27,7 +27,7 @@ import numpy as np
 from numba import get_num_threads, njit
 
 from .._interrupt import pieces, run_pieces
-from .._kernels import FOUND, LEFT_OSCILLATION, NO_RETURN, TAYLOR2, TOO_EARLY, first_return
+from .._kernels import FOUND, LEFT_OSCILLATION, NO_RETURN, TAYLOR2, TOO_EARLY, first_return, kernel_code
 
 
 @njit(cache=True, nogil=True)
@@ -35,7 +35,8 @@ def first_returns_serial(method, order, alphas, cs, h, n_steps):
     """``first_return`` for each pendulum ``(alphas[i], cs[i])`` with ``n_steps[i]`` steps, in turn.
 
     Releases the GIL: :func:`first_returns` runs it on several threads at once. The same
-    results, bit for bit, as :func:`pendulab.crossing.estimate_period`.
+    results, bit for bit, as :func:`pendulab.crossing.estimate_period` (the same kernel code,
+    :func:`pendulab._kernels.kernel_code`).
     """
     m = len(alphas)
     status = np.empty(m, np.int64)
@@ -43,7 +44,7 @@ def first_returns_serial(method, order, alphas, cs, h, n_steps):
     z1w = np.empty((m, 5))
     z2w = np.empty((m, 5))
     for i in range(m):
-        s, ji, w1, w2 = first_return(method, order, alphas[i], cs[i], h, n_steps[i])
+        s, ji, w1, w2 = first_return(kernel_code(method, cs[i], h), order, alphas[i], cs[i], h, n_steps[i])
         status[i] = s
         j[i] = ji
         z1w[i, :] = w1
