@@ -5,7 +5,9 @@
    (``kernel_code``: the certified table step), each against the same loop in C (``cc -O2``,
    compiled now) and the trajectory also against a plain Python loop. The trajectory is
    checked bit for bit against C over 5 000 000 steps, the search to the same return step,
-   and both are timed over short runs (500 000 and 1 000 000 steps).
+   and both are timed over short runs (500 000 and 1 000 000 steps), by the thread's CPU
+   time (all run on this thread; other work on a shared machine takes the core away from
+   either at random).
 2. Exact periods of 10^6 random amplitudes in [0, pi) on one thread: ``agm_period``
    (correctly rounded) against ``scipy.special.ellipk(sin^2(alpha/2))`` scaled to a period,
    with the largest relative error of each against mpmath on 200 amplitudes (half within
@@ -18,6 +20,7 @@ from __future__ import annotations
 
 import math
 import sys
+import time
 
 import mpmath
 import numpy as np
@@ -57,10 +60,10 @@ def taylor_rows(dll, repeat: int = 5) -> list[dict]:
     t = side_by_side({
         "numba": lambda: drive(code, 2, alpha, 0.0, c, h, 0, n_short, 1, n_short, s1[1:], s2[1:]),
         "C": lambda: dll.taylor2(alpha, c, h, n_short, ptr(z1), ptr(z2)),
-    }, 8 * repeat)
+    }, 8 * repeat, time.thread_time)
     t = {k: v * n / n_short for k, v in t.items()}
     n_py = 200_000
-    t_py = side_by_side({"py": lambda: python_loop(alpha, c, h, n_py)}, 1)["py"] * n / n_py
+    t_py = side_by_side({"py": lambda: python_loop(alpha, c, h, n_py)}, 1, time.thread_time)["py"] * n / n_py
     m = 10_000_000
     steps = first_return(code, 2, alpha, c, h, m)[1]
     assert dll.taylor2_return(alpha, c, h, m) == steps
@@ -69,7 +72,7 @@ def taylor_rows(dll, repeat: int = 5) -> list[dict]:
     r = side_by_side({
         "numba": lambda: first_return(code, 2, alpha, c, h, m_short),
         "C": lambda: dll.taylor2_return(alpha, c, h, m_short),
-    }, 8 * repeat)
+    }, 8 * repeat, time.thread_time)
     r = {k: v * steps / m_short for k, v in r.items()}
     return [
         {"what": "Taylor (3) trajectory, h = 1e-6 (M steps/s)", "ours": n / t["numba"] / 1e6,

@@ -8,8 +8,8 @@ for bit. :func:`step` dispatches on a kernel code: one branch per integrator of
 table sine and cosine (:func:`taylor2_fast_step`, :mod:`pendulab._fast`): the literal
 step's doubles, fewer library calls. :func:`kernel_code` says which code a run takes.
 :func:`drive` runs a trajectory of any code, :func:`search_return` the period search; no
-method has a loop of its own. Compiled kernels are cached on disk (``cache=True``): a
-second run does not compile.
+method has a loop of its own. :func:`agm_means` runs the AGM of (7) over arrays.
+Compiled kernels are cached on disk (``cache=True``): a second run does not compile.
 """
 import math
 

@@ -329,13 +329,15 @@ def trajectory_csv(params: Mapping[str, str]) -> tuple[Iterator[str], str]:
 
 def csv_blocks(p: Mapping[str, Any], points: int) -> Iterator[str]:
     """The CSV text in blocks of :data:`CSV_BLOCK` rows: header first, then the kept steps."""
+    from .._kernels import kernel_code
     from ..taylor import method_code, step_count
 
-    code, order = method_code(p["method"])
+    method, order = method_code(p["method"])
     n = step_count(0.0, p["t_max"], p["step"])
     idx = sampling.thin(n + 1, points)
     stride = int(idx[1] - idx[0]) if len(idx) > 1 else 1
     h, c = p["step"], -p["g"] / p["length"]
+    code = kernel_code(method, c, h)  # as taylor.simulate: the same points
     full = p if p.get("columns", "state") == "all" else None
     w0 = float(p.get("omega0", 0.0))
     first = _csv_rows(p, np.zeros(1), np.array([p["amplitude"]]), np.array([w0])) if full else f"{0.0!r},{p['amplitude']!r},{w0!r}\n"
