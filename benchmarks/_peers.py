@@ -8,12 +8,15 @@ many pendulums one after the other on one core (as a plain C program would).
 from __future__ import annotations
 
 import ctypes
+import importlib.util
 import resource
 import subprocess
+import sys
 import tempfile
 import time
 from collections.abc import Callable
 from pathlib import Path
+from types import ModuleType
 
 import numpy as np
 
@@ -72,6 +75,20 @@ def run(cmd: list[str], env: dict | None = None) -> tuple[float, float]:
     elapsed = time.perf_counter() - t
     after = resource.getrusage(resource.RUSAGE_CHILDREN)
     return elapsed, (after.ru_utime - before.ru_utime) + (after.ru_stime - before.ru_stime)
+
+
+def load_against(src: str) -> ModuleType:
+    """The package ``pendulab`` of the folder ``src`` (another checkout's ``src``), imported
+    as ``pendulab_against``: the ``--against`` option of the benchmarks that time a change
+    beside the code before it, in the same run."""
+    root = Path(src) / "pendulab"
+    spec = importlib.util.spec_from_file_location("pendulab_against", root / "__init__.py",
+                                                  submodule_search_locations=[str(root)])
+    assert spec is not None and spec.loader is not None
+    module = importlib.util.module_from_spec(spec)
+    sys.modules["pendulab_against"] = module
+    spec.loader.exec_module(module)
+    return module
 
 
 def side_by_side(fns: dict[str, Callable[[], object]], repeat: int = 5,

@@ -19,31 +19,17 @@ core. ``benchmarks/run.py`` prints the first four rows in its table.
 """
 from __future__ import annotations
 
-import importlib.util
 import math
 import sys
-from pathlib import Path
 from types import ModuleType
 
 import numpy as np
-from _peers import side_by_side
+from _peers import load_against, side_by_side
 
 import pendulab
 from pendulab import approximations, coursework, period
 
 G = 9.80665
-
-
-def load_against(src: str) -> ModuleType:
-    """The package ``pendulab`` of the folder ``src``, imported as ``pendulab_against``."""
-    root = Path(src) / "pendulab"
-    spec = importlib.util.spec_from_file_location("pendulab_against", root / "__init__.py",
-                                                  submodule_search_locations=[str(root)])
-    assert spec is not None and spec.loader is not None
-    module = importlib.util.module_from_spec(spec)
-    sys.modules["pendulab_against"] = module
-    spec.loader.exec_module(module)
-    return module
 
 
 def calls(pkg: ModuleType, period_mod: ModuleType, approx_mod: ModuleType) -> dict:

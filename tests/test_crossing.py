@@ -4,6 +4,8 @@ import re
 
 import numpy as np
 import pytest
+from hypothesis import given, settings
+from hypothesis import strategies as st
 
 from pendulab.crossing import estimate_period, observed_orders, search_period
 from pendulab.errors import InputError, LeftOscillationError, NoReturnError
@@ -232,3 +234,31 @@ def test_an_underflowing_motion_is_no_return_that_no_t_max_helps():
     assert s.status == Status.NO_RETURN and s.underflow and s.suggested_t_max is None and s.j is None
     with pytest.raises(NoReturnError, match="no t_max helps"):
         estimate_period(1.0, 1e-300, 1e-9, t_max=1.0)
+
+
+_EDGE = st.sampled_from([0.0, -0.0, 5e-324, -5e-324, 1.0, -1.0, math.pi, -math.pi, math.nextafter(math.pi, 0),
+                         -math.nextafter(math.pi, 0), math.inf, -math.inf, math.nan])
+_ANY = st.one_of(_EDGE, st.floats(-4.0, 4.0))
+
+
+@settings(max_examples=300, deadline=None)
+@given(z1=_ANY, z1n=_ANY, z2=_ANY, z2n=_ANY, i=st.integers(0, 6), n=st.integers(1, 8))
+def test_return_rule_decides_as_the_coursework_program(z1, z1n, z2, z2n, i, n):
+    # The one statement of the first-return rule (the scalar search and the sweep's lanes
+    # both call it) against the coursework program problem3.py's sign_change on the two
+    # points Z_i, Z_{i+1}, and the window Z_{j-2} .. Z_{j+2} that the estimate needs.
+    from pendulab._kernels import FOUND, LEFT_OSCILLATION, NO_RETURN, TOO_EARLY, UNDECIDED, return_rule
+    from pendulab.coursework import load
+
+    j, over = load()["problem3.py"].sign_change([z1, z1n], [z2, z2n])
+    if over is not None or math.isnan(z1n):  # a NaN angle (a blow-up) is over the top too
+        expected = (LEFT_OSCILLATION, i)
+    elif j is None:
+        expected = (UNDECIDED, i)
+    elif i < 2:
+        expected = (TOO_EARLY, i)  # no Z_{j-2}
+    elif i + 2 > n:
+        expected = (NO_RETURN, n)  # Z_{j+2} beyond the n steps
+    else:
+        expected = (FOUND, i)
+    assert return_rule(i, n, z1n, z2, z2n) == expected

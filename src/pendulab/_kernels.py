@@ -217,6 +217,33 @@ def trajectory(method, order, alpha, c, h, n):
 FOUND, NO_RETURN, LEFT_OSCILLATION, TOO_EARLY = (
     int(s) for s in (Status.FOUND, Status.NO_RETURN, Status.LEFT_OSCILLATION, Status.TOO_EARLY)
 )
+#: :func:`return_rule`'s code of a step that decides nothing.
+UNDECIDED = -1
+
+
+@njit(cache=True, nogil=True, inline="always")
+def return_rule(i, n, z1n, z2, z2n):
+    """``(status, j)``: what step ``i`` (``Z_i -> Z_{i+1}``) of a search of ``n`` steps decides.
+
+    The first return to ``P = (alpha, 0)`` (problem 3) is the first ``j`` with
+    ``z2_j > 0 >= z2_{j+1}`` and ``z1_{j+1} > 0``, the sign change of ``theta'`` from + to -
+    at the top of the swing: ``FOUND`` at ``j = i``, ``TOO_EARLY`` where ``j < 2`` (no
+    ``Z_{j-2}``), ``NO_RETURN`` with ``j = n`` where ``Z_{j+2}`` lies beyond the ``n`` steps.
+    ``|z1_{i+1}| >= pi`` (or NaN) comes first: ``LEFT_OSCILLATION`` at ``j = i``. Otherwise
+    ``UNDECIDED``. The one statement of the rule, for :func:`search_return` and the sweep's
+    lock-step lanes (each loop ends its own steps). Its branches only choose constants:
+    LLVM turns them into selects, so the lanes' loop that tests every lane still
+    vectorises, and the scalar loop still skips the rest after the first failed test.
+    """
+    if not abs(z1n) < math.pi:
+        return LEFT_OSCILLATION, i
+    if z2 > 0.0 and z2n <= 0.0 and z1n > 0.0:
+        if i < 2:
+            return TOO_EARLY, i
+        if i + 2 > n:
+            return NO_RETURN, n
+        return FOUND, i
+    return UNDECIDED, i
 
 
 @njit(cache=True, nogil=True)
@@ -267,16 +294,11 @@ def search_return(method, order, c, h, n, lo, hi, z1w, z2w):
             z1w[4] = z1n
             z2w[4] = z2n
             break
-        if not abs(z1n) < math.pi:  # also catches NaN
-            status, j = LEFT_OSCILLATION, i
-            break
-        if z2 > 0.0 and z2n <= 0.0 and z1n > 0.0:  # j = i
-            if i < 2:
-                status, j = TOO_EARLY, i
+        decided, jj = return_rule(i, n, z1n, z2, z2n)
+        if decided != UNDECIDED:
+            status, j = decided, jj
+            if decided != FOUND:  # over the top, too early, or Z_{j+2} beyond t_max
                 break
-            if i + 2 > n:  # Z_{j+2} lies beyond t_max
-                break
-            status, j = FOUND, i
             z1w[0], z1w[1], z1w[2], z1w[3] = a2, a1, z1, z1n
             z2w[0], z2w[1], z2w[2], z2w[3] = b2, b1, z2, z2n
         a2, b2 = a1, b1

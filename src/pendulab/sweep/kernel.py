@@ -27,7 +27,7 @@ import numpy as np
 from numba import get_num_threads, njit
 
 from .._interrupt import pieces, run_pieces
-from .._kernels import FOUND, LEFT_OSCILLATION, NO_RETURN, TAYLOR2, TOO_EARLY, first_return, kernel_code
+from .._kernels import FOUND, NO_RETURN, TAYLOR2, UNDECIDED, first_return, kernel_code, return_rule
 
 
 @njit(cache=True, nogil=True)
@@ -105,9 +105,11 @@ _RUNNING, _LAST, _DONE = 0, 1, 2
 def _lanes(alphas, cs, h, n, status, j, w1, w2):
     """(3) for up to :data:`LANES` pendulums in lock-step, to each one's first return.
 
-    The same search as :func:`pendulab._kernels.first_return`, per lane: the step loop
-    over the lanes has no branch (it vectorises); the rare events (a sign change, the end
-    of a lane's steps) are handled in a second loop only at the steps where one occurs.
+    The same search as :func:`pendulab._kernels.first_return`, per lane, by the same rule
+    (:func:`pendulab._kernels.return_rule`): the step loop over the lanes and the rule's
+    test for every lane vectorise (no branch but the rule's choices among constants,
+    which LLVM makes selects); the rare events (a sign change, the end of a lane's
+    steps) are handled in a second loop only at the steps where one occurs.
     """
     m = alphas.size
     z1 = alphas.copy()
@@ -123,9 +125,9 @@ def _lanes(alphas, cs, h, n, status, j, w1, w2):
             z1n[k] = z1[k] + h * z2[k] + hh * cs[k] * s
             z2n[k] = z2[k] + h * cs[k] * s + hh * cs[k] * z2[k] * co
         event = False
-        for k in range(m):
-            event |= (state[k] != _DONE) & ((state[k] == _LAST) | (i >= n[k]) | (not abs(z1n[k]) < math.pi)
-                                           | ((z2[k] > 0.0) & (z2n[k] <= 0.0) & (z1n[k] > 0.0)))
+        for k in range(m):  # the rule for every lane: vectorised
+            decided = return_rule(i, n[k], z1n[k], z2[k], z2n[k])[0]
+            event |= (state[k] != _DONE) & ((state[k] == _LAST) | (i >= n[k]) | (decided != UNDECIDED))
         if event:
             for k in range(m):
                 if state[k] == _DONE:
@@ -133,19 +135,16 @@ def _lanes(alphas, cs, h, n, status, j, w1, w2):
                 if state[k] == _LAST:  # Z_{j+2}
                     w1[k, 4], w2[k, 4] = z1n[k], z2n[k]
                     state[k] = _DONE
-                elif i >= n[k]:
+                elif i >= n[k]:  # the lane's steps ran out
                     status[k], j[k], state[k] = NO_RETURN, n[k], _DONE
-                elif not abs(z1n[k]) < math.pi:  # also catches NaN
-                    status[k], j[k], state[k] = LEFT_OSCILLATION, i, _DONE
-                elif z2[k] > 0.0 and z2n[k] <= 0.0 and z1n[k] > 0.0:  # j = i
-                    if i < 2:
-                        status[k], j[k], state[k] = TOO_EARLY, i, _DONE
-                    elif i + 2 > n[k]:  # Z_{j+2} lies beyond t_max
-                        status[k], j[k], state[k] = NO_RETURN, n[k], _DONE
-                    else:
-                        status[k], j[k], state[k] = FOUND, i, _LAST
+                else:
+                    decided, jj = return_rule(i, n[k], z1n[k], z2[k], z2n[k])
+                    if decided == FOUND:
+                        status[k], j[k], state[k] = FOUND, jj, _LAST
                         w1[k, 0], w1[k, 1], w1[k, 2], w1[k, 3] = a2[k], a1[k], z1[k], z1n[k]
                         w2[k, 0], w2[k, 1], w2[k, 2], w2[k, 3] = b2[k], b1[k], z2[k], z2n[k]
+                    elif decided != UNDECIDED:
+                        status[k], j[k], state[k] = decided, jj, _DONE
                 if state[k] == _DONE:
                     left -= 1
                     z1n[k] = z2n[k] = 0.0  # at rest: no further events
