@@ -206,6 +206,11 @@ def test_plots_draw_without_an_axes():
     assert ax.get_xlabel() == "t (s)"
     ax2 = phase_portrait(tr, ax=ax.figure.add_subplot(2, 1, 2))
     assert ax2 is not ax and len(ax2.collections) == 1  # the arrows
+    long = simulate(1.0, math.pi / 4, step=1e-3, t_max=5.0)  # 5001 points: thinned to 400 arrows at most
+    arrows = phase_portrait(long, ax=plt.figure().add_subplot()).collections[0]
+    assert 300 <= len(arrows.get_offsets()) <= 400
+    x, y = arrows.axes.lines[0].get_data()  # the points: the first and the last step among them
+    assert (x[0], y[0]) == (long.theta[0], long.omega[0]) and (x[-1], y[-1]) == (long.theta[-1], long.omega[-1])
     circled = [line for line in ax2.lines if line.get_label().startswith("$P")]
     assert circled and circled[0].get_xdata()[0] == tr.amplitude
 

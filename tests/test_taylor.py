@@ -3,10 +3,12 @@ import math
 
 import numpy as np
 import pytest
+from hypothesis import given, settings
+from hypothesis import strategies as st
 
 from pendulab import cases
 from pendulab.errors import InputError
-from pendulab.taylor import simulate, step_count
+from pendulab.taylor import kept_steps, simulate, step_count, stride_for
 from reference import FIGURE3, G
 
 
@@ -117,3 +119,34 @@ def test_bad_stride():
     with pytest.raises(InputError) as err:
         simulate(1.0, 0.5, 0.1, 2.0, stride=0)
     assert err.value.name == "stride"
+
+
+@settings(max_examples=300, deadline=None)
+@given(n=st.integers(0, 3000), stride=st.integers(1, 400), data=st.data())
+def test_kept_steps_are_every_stride_th_step_and_the_last(n, stride, data):
+    # The rule written out (every step that is a multiple of stride, and the last), over
+    # any range lo..hi, and consecutive pieces (i0, i1] add up to the whole run, as the
+    # explorer's CSV reads them block by block.
+    lo = data.draw(st.integers(0, n))
+    hi = data.draw(st.integers(lo, n))
+    plain = [i for i in range(lo, hi + 1) if i % stride == 0 or i == n]
+    assert kept_steps(n, stride, lo, hi).tolist() == plain
+    cuts = sorted(set(data.draw(st.lists(st.integers(0, n), max_size=5))) | {0, n})
+    pieces = [kept_steps(n, stride, i0 + 1, i1) for i0, i1 in zip(cuts, cuts[1:])]
+    assert [0, *np.concatenate([np.zeros(0, np.int64), *pieces]).tolist()] == kept_steps(n, stride).tolist()
+
+
+@settings(max_examples=300, deadline=None)
+@given(points=st.integers(2, 10**6), k=st.integers(0, 3000), d=st.integers(-2, 2))
+def test_thinned_to_points_keeps_both_ends_and_at_most_points(points, k, d):
+    # The worst cases sit next to the multiples of points - 1 (the search's n): one step
+    # more and the stride must grow by one.
+    n = max(0, k * (points - 1) + d)
+    stride = stride_for(n, points)
+    idx = kept_steps(n, stride)
+    assert idx[0] == 0 and idx[-1] == n
+    assert np.all(np.diff(idx) > 0)  # sorted, no repeats
+    assert len(idx) <= points
+    assert len(idx) == n + 1 or stride > 1  # all kept where all fit
+    if stride > 1:  # the smallest stride that fits: one less keeps too many
+        assert len(kept_steps(n, stride - 1)) > points

@@ -201,14 +201,6 @@ def test_blown_up_simulation_is_flagged(client):
     assert body["flags"]["trustworthy"] and body["flags"]["warnings"] == []
 
 
-@pytest.mark.parametrize("n, points", [(5, 10), (10, 10), (11, 10), (100, 7), (1001, 2), (10**6, 999)])
-def test_thin_keeps_ends_and_bound(n, points):
-    idx = sampling.thin(n, points)
-    assert idx[0] == 0 and idx[-1] == n - 1
-    assert len(idx) <= points and len(idx) == len(set(idx.tolist()))
-    assert len(idx) == min(n, points) or n > points
-
-
 def test_simulate_without_period_says_why(client):
     # At rest nothing moves; a huge step sends the discrete pendulum over the top.
     body = client.get("/api/simulate", params={"length": "1", "amplitude": "0", "step": "0.01", "t_max": "2"}).json()

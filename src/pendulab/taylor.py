@@ -92,6 +92,26 @@ class Trajectory(Result):
         return np.column_stack([self.theta, self.omega])
 
 
+def kept_steps(n: int, stride: int, lo: int = 0, hi: int | None = None) -> np.ndarray:
+    """The steps of a run of ``n`` steps kept at ``stride``, from ``lo`` to ``hi`` (default ``n``).
+
+    The trajectory driver's rule (``_kernels.drive``): every multiple of ``stride``, and the
+    last step ``n`` where ``hi`` is ``n``. Over the whole run, sorted, without repeats, ``0``
+    and ``n`` kept: ``n // stride + 1`` steps, one more where ``stride`` does not divide ``n``.
+    """
+    hi = n if hi is None else hi
+    idx = np.arange(-(-lo // stride) * stride, hi + 1, stride, dtype=np.int64)
+    if hi == n and n % stride:
+        idx = np.append(idx, np.int64(n))
+    return idx
+
+
+def stride_for(n: int, points: int) -> int:
+    """The smallest stride at which :func:`kept_steps` keeps at most ``points`` (at least 2)
+    of the steps ``0 .. n``: ``ceil(n / (points - 1))``, and 1 where all fit."""
+    return max(1, -(-n // (points - 1)))
+
+
 def simulate(
     length: float,
     amplitude: float,
@@ -141,9 +161,7 @@ def simulate(
     if kept > MAX_POINTS:
         raise v.step_limit("step", step, t0, t_max, MAX_POINTS - 1, "points kept", kept - 1,
                            "or a shorter t_max, or a stride")
-    index = np.arange(0, n + 1, stride)
-    if index[-1] != n:
-        index = np.append(index, n)
+    index = kept_steps(n, stride)
     from ._kernels import thinned, trajectory
 
     if stride == 1:

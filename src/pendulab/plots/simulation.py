@@ -5,6 +5,7 @@ from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
+from ..taylor import kept_steps, stride_for
 from ._axes import axes
 
 if TYPE_CHECKING:
@@ -37,7 +38,7 @@ def phase_portrait(trajectory: Trajectory, ax: Axes | None = None, max_arrows: i
                    arrow_width: float = 0.006, labels: dict[str, str] | None = None) -> Axes:
     """Figure 2: phase points ``Z_j = (z1_j, z2_j)`` joined by arrows, ``P = (alpha, 0)`` circled.
 
-    Long trajectories are thinned to about ``max_arrows`` arrows. ``arrow_width`` is the
+    Long trajectories are thinned to at most ``max_arrows`` arrows, the first and last point kept. ``arrow_width`` is the
     shaft's width as a fraction of the axes' width; the heads scale with it, so a figure
     printed a few centimetres wide keeps visible heads. ``labels`` replaces the axis
     labels and the legend's (keys ``x``, ``y``, ``P``). Returns the axes drawn on.
@@ -46,8 +47,9 @@ def phase_portrait(trajectory: Trajectory, ax: Axes | None = None, max_arrows: i
     words = {"x": r"$z_1 \approx \theta$ (rad)", "y": r"$z_2 \approx \theta'$ (rad/s)",
              "P": r"$P = (\alpha, 0)$"} | (labels or {})
     z1, z2 = trajectory.theta, trajectory.omega
-    stride = max(1, len(z1) // max_arrows)
-    x, y = z1[::stride], z2[::stride]
+    n = len(z1) - 1
+    keep = kept_steps(n, stride_for(n, max_arrows + 1))
+    x, y = z1[keep], z2[keep]
     ax.quiver(
         x[:-1], y[:-1], np.diff(x), np.diff(y),
         angles="xy", scale_units="xy", scale=1, width=arrow_width, headwidth=3.5, headlength=4.5,

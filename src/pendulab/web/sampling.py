@@ -18,6 +18,7 @@ import numpy as np
 
 from .._interrupt import CHUNK_COST
 from ..methods import cost_per_step
+from ..taylor import kept_steps, stride_for
 
 #: Phase-portrait points per exact period, and at most this many in all.
 PHASE_PER_PERIOD, PHASE_POINTS = 256, 4000
@@ -33,22 +34,6 @@ def finite_list(a: np.ndarray) -> list:
     return out
 
 
-def thin(n_points: int, points: int) -> np.ndarray:
-    """Indices ``0, k, 2k, ...`` plus the last one: at most ``points`` of ``n_points``, evenly spaced."""
-    if n_points <= points:
-        return np.arange(n_points)
-    stride = math.ceil((n_points - 1) / (points - 1))
-    idx = np.arange(0, n_points, stride)
-    if idx[-1] != n_points - 1:
-        idx = np.append(idx, n_points - 1)
-    return idx
-
-
-def uniform(n: int, stride: int) -> np.ndarray:
-    idx = np.arange(0, n + 1, stride, dtype=np.int64)
-    return idx if idx[-1] == n else np.append(idx, n)
-
-
 def phase_samples(n: int, steps_per_period: float) -> tuple[np.ndarray, int, int]:
     """Steps drawn in the phase portrait: a curve, never chords across the orbit.
 
@@ -60,7 +45,7 @@ def phase_samples(n: int, steps_per_period: float) -> tuple[np.ndarray, int, int
     # A run shorter than a period (T = 1e150 s) has its points spread over the run instead.
     k = max(1, int(min(steps_per_period, 2.0 * n) // PHASE_PER_PERIOD))
     if n // k + 1 <= PHASE_POINTS:
-        return uniform(n, k), k, 1
+        return kept_steps(n, k), k, 1
     span = min(n, int(math.ceil(1.05 * steps_per_period)))
     per = span // k + 1
     windows = max(2, PHASE_POINTS // per)
@@ -75,8 +60,7 @@ def frame_samples(n: int, steps_per_period: float, per_period: int = 16, most: i
     The animation interpolates between them; the global error is evaluated at 64 a period.
     """
     most = FRAME_POINTS if most is None else most
-    k = max(1, int(min(steps_per_period, 2.0 * n) // per_period), math.ceil(n / (most - 1)))
-    return uniform(n, min(k, n))
+    return kept_steps(n, max(int(min(steps_per_period, 2.0 * n) // per_period), stride_for(n, most)))
 
 
 def minmax(bins: np.ndarray, values: np.ndarray, nb: int) -> np.ndarray:

@@ -330,12 +330,11 @@ def trajectory_csv(params: Mapping[str, str]) -> tuple[Iterator[str], str]:
 def csv_blocks(p: Mapping[str, Any], points: int) -> Iterator[str]:
     """The CSV text in blocks of :data:`CSV_BLOCK` rows: header first, then the kept steps."""
     from .._kernels import kernel_code
-    from ..taylor import method_code, step_count
+    from ..taylor import method_code, step_count, stride_for
 
     method, order = method_code(p["method"])
     n = step_count(0.0, p["t_max"], p["step"])
-    idx = sampling.thin(n + 1, points)
-    stride = int(idx[1] - idx[0]) if len(idx) > 1 else 1
+    stride = stride_for(n, points)  # at most ``points`` rows, step 0's included
     h, c = p["step"], -p["g"] / p["length"]
     code = kernel_code(method, c, h)  # as taylor.simulate: the same points
     full = p if p.get("columns", "state") == "all" else None
@@ -365,14 +364,12 @@ def _csv_block(code: int, order: int, state: tuple[float, float], c: float, h: f
                i0: int, i1: int, stride: int, n: int,
                full: Mapping[str, Any] | None = None) -> tuple[tuple[float, float], str]:
     from .._kernels import drive
+    from ..taylor import kept_steps
 
     size = (i1 - i0) // stride + 2
     z1, z2 = np.empty(size), np.empty(size)
     a, b, k = drive(code, order, state[0], state[1], c, h, i0, i1, stride, n, z1, z2)
-    # The steps drive keeps: the multiples of stride in (i0, i1], and n where the run ends here.
-    ii = np.arange((i0 // stride + 1) * stride, i1 + 1, stride)
-    if i1 == n and n % stride:
-        ii = np.append(ii, n)
+    ii = kept_steps(n, stride, i0 + 1, i1)  # the steps drive kept
     if full is not None:
         return (a, b), _csv_rows(full, h * ii[:k], z1[:k], z2[:k])
     t = (h * ii[:k]).tolist()
