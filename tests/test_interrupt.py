@@ -230,3 +230,27 @@ def test_a_signal_between_the_key_and_its_class_file_waits_for_both(tmp_path, si
     assert (res.returncode, res.stderr.splitlines()) == (status, [f"pendulab key: {word}"]), res.stderr
     assert out.read_text().startswith("line,students") and side.read_text().startswith("problem,answer,value")
     assert sorted(p.name for p in tmp_path.iterdir()) == ["groups.txt", "key-class.csv", "key.csv"]
+
+
+def test_ctrl_c_while_the_command_line_loads_is_one_line():
+    """Ctrl+C in the first milliseconds of ``python -m pendulab``: ``-X importtime`` writes a
+    line as each module finishes loading, and SIGINT goes at several delays after the line of
+    ``signal``, which the entry point loads first, after the package's own first lines. Each
+    try ends with the one line and 130, never a traceback."""
+    env = {**os.environ, "PYTHONUNBUFFERED": "1"}
+    for delay in (0.0, 0.0005, 0.001, 0.002, 0.004, 0.008, 0.016):
+        proc = subprocess.Popen([sys.executable, "-X", "importtime", "-m", "pendulab", "length", "262", "407", "634"],
+                                stdout=subprocess.DEVNULL, stderr=subprocess.PIPE, text=True, env=env)
+        assert proc.stderr is not None
+        loaded = []
+        for line in proc.stderr:
+            loaded.append(line.rsplit("|", 1)[-1].strip())
+            if loaded[-1] == "signal":
+                break
+        time.sleep(delay)
+        proc.send_signal(signal.SIGINT)
+        rest = proc.stderr.read()
+        code = proc.wait(timeout=60)
+        assert loaded[-1] == "signal" and "pendulab" in loaded, loaded  # the package, then the entry point
+        said = [line for line in rest.splitlines() if not line.startswith("import time:")]
+        assert code == 130 and said in (["pendulab: interrupted"], ["pendulab length: interrupted"]), (delay, code, rest)

@@ -10,12 +10,13 @@ Plots are in :mod:`pendulab.plots`.
 """
 from __future__ import annotations
 
-from typing import TYPE_CHECKING
-
 from ._extras import lazy
 from ._version import __version__
 from .errors import InputError, MissingExtraError, NumericalError, PendulabError
 
+# ``typing`` is left unimported: its milliseconds come before the command line's entry point
+# handles Ctrl+C (type checkers read the name TYPE_CHECKING as true).
+TYPE_CHECKING = False
 if TYPE_CHECKING:
     from .approximations import approximation_errors
     from .crossing import estimate_period

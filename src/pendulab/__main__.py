@@ -1,22 +1,32 @@
 """``python -m pendulab``, and the ``pendulab`` command's entry point (:func:`run`)."""
-import gc
-import signal
+import gc  # built in, loaded with the interpreter
 import sys
-
-from ._interrupt import Terminated, terminate_handler
 
 
 def run() -> int:
-    """:func:`pendulab.cli.main`; Ctrl+C or SIGTERM while the command line loads is one line too."""
-    signal.signal(signal.SIGTERM, terminate_handler)  # before the imports: they take a while
+    """:func:`pendulab.cli.main`; Ctrl+C or SIGTERM while the command line loads is one line too.
+
+    Every import is inside (``signal`` loads ``enum``, ``_interrupt`` loads ``threading``):
+    before this function runs, only Python's start-up and the package's first lines (a few
+    plain modules, no ``typing``) are left to Python's own handling of Ctrl+C.
+    """
     try:
+        import signal
+
+        from ._interrupt import terminate_handler
+
+        signal.signal(signal.SIGTERM, terminate_handler)  # before the command line's imports: they take a while
         from .cli import main
 
         code = main()
     except KeyboardInterrupt as exc:  # while the command line loaded, or just after the command
+        from ._interrupt import Terminated  # loaded, unless the Ctrl+C came while it loaded
+
         term = isinstance(exc, Terminated)
         sys.stderr.write(f"pendulab: {'terminated' if term else 'interrupted'}\n")
         code = 143 if term else 130
+    import signal  # loaded, unless the Ctrl+C came while it loaded
+
     # The command is over and has said how: what is left is Python's shutdown, where a
     # signal would end the process by that signal instead (no line, another status).
     # Blocked from here, it stays pending until the process has exited with its status.

@@ -9,11 +9,14 @@ from __future__ import annotations
 import importlib
 import importlib.util
 import sys
-from collections.abc import Callable
 from types import ModuleType
-from typing import Any
 
 from .errors import MissingExtraError
+
+TYPE_CHECKING = False  # typing unimported: ``import pendulab`` loads this module (see pendulab/__init__.py)
+if TYPE_CHECKING:
+    from collections.abc import Callable
+    from typing import Any
 
 #: Top-level package -> the extra of pyproject.toml that installs it.
 EXTRA_OF = {
