@@ -18,6 +18,7 @@ from pendulab.period import FIXED_ITERATIONS_ULPS, periods
 from pendulab.report.key import document
 from pendulab.taylor import simulate
 from pendulab.words import sentence
+from reference import G
 
 
 def plain(x):
@@ -127,3 +128,15 @@ def test_key(cli, tmp_path):
     groups.write_text("262 407 634\n99999 1\n")
     doc = json.loads(cli("key", "--groups", groups, "--json").out)
     assert doc == plain(document(answer_key(read_entries(groups))))
+
+
+def test_sweep(cli):
+    """The sweep's table is the result's ``summary()``; beside it, the command's own inputs and
+    files (``output``, ``plot``: none here)."""
+    from pendulab.sweep import sweep
+
+    doc = json.loads(cli("sweep", "--amplitude", "10deg:170deg:5", "--step", "1e-2", "--method", "taylor2,rk4",
+                         "-l", "2", "--json").out)
+    result = sweep(np.radians(np.linspace(10, 170, 5)), [1e-2], ["taylor2", "rk4"], lengths=2.0)
+    assert doc == {"length": 2.0, "g": G, "amplitudes": 5, "output": None, "plot": None,
+                   "summary": plain(result.summary())}
