@@ -14,7 +14,7 @@ either at random), on the example group's pendulum (l = 2.0800838231 m, alpha = 
   certified table step (``TAYLOR2_FAST``, the code :func:`pendulab._kernels.kernel_code`
   chooses for fine steps) at h = 1e-6: (i) a trajectory of 10^6 steps through ``drive``,
   (ii) the whole period search (``first_return``, 4.79 * 10^6 steps); and the trajectory
-  at h = 1e-4 (the explorer's default step, where about 5 steps in 100 fall back) and
+  at h = 1e-4 (where about 5 steps in 100 fall back) and
   h = 1e-3, where ``kernel_code`` keeps the literal step.
 
 Every pair is checked to give the same bits before it is timed. Ratios are ours/baseline
