@@ -395,3 +395,16 @@ def test_a_failure_between_the_two_renames_leaves_the_old_pair(key, tmp_path, mo
     monkeypatch.setattr(_atomic.os, "replace", real)
     assert write_key(key, out) == [out, side]  # and a write that succeeds writes both
     assert out.read_text().startswith("line,students") and side.read_text().startswith("problem,answer,value")
+
+
+def test_groups_listed_again_are_data_and_the_warning_names_each(tmp_path, capsys):
+    from pendulab.key import listed_again
+
+    text = "1 2\n3 4\n2 1\n5\n4 3\n1 2\n"
+    assert listed_again(parse_entries(text)) == [((1, 2), [1, 3, 6]), ((3, 4), [2, 5])]
+    assert listed_again(parse_entries("1 2\n3 4\n")) == []
+    groups = tmp_path / "g.txt"
+    groups.write_text(text)
+    assert main(["key", "--groups", str(groups), "--json"]) == 0
+    warnings = [line for line in capsys.readouterr().err.splitlines() if "warning" in line]
+    assert warnings == ["pendulab: warning: 2 groups listed more than once: 1 2 (lines 1, 3, 6); 3 4 (lines 2, 5)"]

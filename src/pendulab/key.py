@@ -166,18 +166,14 @@ def duplicates(entries: Sequence[Entry]) -> dict[int, int]:
     return out
 
 
-def duplicate_warning(entries: Sequence[Entry]) -> str | None:
-    """One line naming every group listed more than once and its lines, or ``None``."""
-    dup = duplicates(entries)
-    if not dup:
-        return None
+def listed_again(entries: Sequence[Entry]) -> list[tuple[tuple[int, ...], list[int]]]:
+    """Each group listed more than once: its student numbers and every line that lists it
+    (the first listing's first), in the order of the first listings. Empty when none is."""
     lines: dict[int, list[int]] = {}
-    for line, first in dup.items():
+    for line, first in duplicates(entries).items():
         lines.setdefault(first, [first]).append(line)
     by_line = {(e.line if e.line is not None else i): e for i, e in enumerate(entries, start=1)}
-    parts = [f"{' '.join(map(str, by_line[first].students))} (lines {', '.join(map(str, ls))})"
-             for first, ls in lines.items()]
-    return f"{len(parts)} group{'s' if len(parts) != 1 else ''} listed more than once: " + "; ".join(parts)
+    return [(by_line[first].students, ls) for first, ls in lines.items()]
 
 
 def output_format(path: str | os.PathLike) -> str:

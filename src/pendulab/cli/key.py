@@ -37,8 +37,13 @@ def key(groups_file: str, output: str | None, as_json: bool) -> None:
             from .._extras import require
 
             require("typst", "pendulab key --output FILE.pdf")
-    warning = answer.duplicate_warning(groups)
-    if warning is not None:
+    again = answer.listed_again(groups)
+    if again:
+        from ..words import sentence
+
+        listed = "; ".join(sentence("key.listed_again.group", students=" ".join(map(str, students)),
+                                    lines=", ".join(map(str, lines))) for students, lines in again)
+        warning = sentence("key.listed_again." + ("one" if len(again) == 1 else "many"), count=len(again), groups=listed)
         click.echo(f"pendulab: warning: {warning}", err=True)
     k = answer.answer_key(groups)
     if output is not None:
