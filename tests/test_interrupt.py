@@ -175,18 +175,19 @@ def test_sigterm_mid_run_ends_with_one_line_and_143(tmp_path):
 
 
 def test_an_interrupted_key_keeps_the_old_output_and_leaves_no_temporary_file(tmp_path):
-    """key on many groups, stopped by SIGINT or SIGTERM: the older key intact, nothing left beside it."""
+    """key on many groups, stopped by SIGINT or SIGTERM: the older key and its class file intact
+    (or both new, where the run had finished), nothing left beside them."""
     groups = tmp_path / "groups.txt"
     groups.write_text("\n".join(f"{100 + i} {200 + 3 * i} {300 + 7 * i}" for i in range(1000)) + "\n")
-    out = tmp_path / "key.csv"
-    out.write_text("old key\n")
+    out, side = tmp_path / "key.csv", tmp_path / "key-class.csv"
     for i, sig in enumerate([signal.SIGINT, signal.SIGTERM] * 3):
-        code, err = _signal_run(["key", "--groups", groups, "--output", out], 0.6 * i, sig, tmp_path)
-        if _assert_stopped(code, err, sig, "key"):
-            assert out.read_text() == "old key\n"
-        left = {p.name for p in tmp_path.iterdir()}  # no temporary file beside the key
-        assert left - {"key-class.csv"} == {"groups.txt", "key.csv", "tmp"}, left
         out.write_text("old key\n")
+        side.write_text("old class\n")
+        code, err = _signal_run(["key", "--groups", groups, "--output", out], 0.6 * i, sig, tmp_path)
+        pair = out.read_text() == "old key\n", side.read_text() == "old class\n"
+        assert pair == ((True, True) if _assert_stopped(code, err, sig, "key") else (False, False)), (code, err)
+        left = {p.name for p in tmp_path.iterdir()}  # no temporary file beside the key
+        assert left == {"groups.txt", "key.csv", "key-class.csv", "tmp"}, left
 
 
 def test_sigterm_during_report_leaves_no_temporary_folder(tmp_path):
