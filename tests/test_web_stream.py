@@ -93,6 +93,7 @@ CASES = [
     ("taylor2", 1.0, 3.0, 1.0, 2000.0, 150, 2 * stream.BUFFER + 3),  # blows up: inf, then NaN
     ("taylor2", 1.0, 1.0, 0.1, 2.0, 500, 5),  # more columns than states: some stay empty
     ("rk4", 1.0, 1.0, 0.5, 1.0, 3, 1),  # two steps
+    ("taylor2", 1.0, 0.0, 0.01, 3.0, 37, 100),  # at rest: every value ties, first and last kept
 ]
 
 
