@@ -30,7 +30,14 @@ import adversarial
 from pendulab.crossing import estimate_period
 from pendulab.lsq import EIGENVALUE_ERROR_FACTOR
 from pendulab.motion import exact_motion, exact_motion_error_bound
-from pendulab.period import FIXED_ITERATIONS_ULPS, agm_period, fixed_iterations_limit, period_digits
+from pendulab.period import (
+    FIXED_ITERATIONS_ULPS,
+    agm_mean,
+    agm_period,
+    fixed_iterations_limit,
+    period_digits,
+    small_angle_period,
+)
 from pendulab.quadrature import quadrature_period
 
 DOC = Path(__file__).resolve().parents[1] / "docs" / "accuracy.md"
@@ -51,13 +58,8 @@ def seven_iterations(quick: bool = False) -> tuple[str, list[str], list[list[str
     """7 iterations of (7) against the converged loop and the correctly rounded period."""
     limit = fixed_iterations_limit()
 
-    def converged(alpha):  # (7) until a - b <= 4 eps a: the plain loop, iterated to convergence
-        a, b = 1.0, math.cos(0.5 * alpha)
-        for _ in range(64):
-            if a - b <= 4 * EPS * a:
-                break
-            a, b = 0.5 * (a + b), math.sqrt(a * b)
-        return 2 * math.pi * math.sqrt(1.0 / G) / (0.5 * (a + b))
+    def converged(alpha):  # (7) until a - b <= 4 eps a: the double-precision loop, to convergence
+        return small_angle_period(1.0, G) / agm_mean(math.cos(0.5 * alpha))
 
     rng = np.random.default_rng(7)
     size = 100 if quick else 2000
