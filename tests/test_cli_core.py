@@ -172,6 +172,27 @@ def test_help_and_period_do_not_import_heavy_modules():
     assert res.stdout.strip() == "[]", res.stderr
 
 
+@pytest.mark.skipif(not os.path.isdir("/proc/self/task"), reason="threads counted in /proc (Linux)")
+@pytest.mark.parametrize(("given", "threads"), [(None, 1), ("2", 2)])
+def test_entry_point_loads_blas_with_one_thread_unless_the_user_says(given, threads):
+    """OpenBLAS starts a worker thread per further thread it is given (each spinning as it
+    loads): the command line's entry point gives it one, or what OPENBLAS_NUM_THREADS says."""
+    code = (
+        "import os, sys\n"
+        "from pendulab.__main__ import run\n"
+        "sys.argv = ['pendulab', 'period', '-l', '1', '-a', '1']\n"
+        "run()\n"
+        "import numpy\n"
+        "print(len(os.listdir('/proc/self/task')))\n"
+    )
+    env = {k: v for k, v in os.environ.items() if k != "OPENBLAS_NUM_THREADS"}
+    if given is not None:
+        env["OPENBLAS_NUM_THREADS"] = given
+    res = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, env=env, timeout=120)
+    assert res.returncode == 0, res.stderr
+    assert res.stdout.split()[-1] == str(threads)
+
+
 def test_console_script_bad_input_has_no_traceback():
     res = subprocess.run([sys.executable, "-m", "pendulab", "period", "-l", "-1", "-a", "1"],
                          capture_output=True, text=True, timeout=120)

@@ -1,5 +1,6 @@
 """``python -m pendulab``, and the ``pendulab`` command's entry point (:func:`run`)."""
 import gc  # built in, loaded with the interpreter
+import os  # loaded with the interpreter (by site)
 import sys
 
 
@@ -10,6 +11,11 @@ def run() -> int:
     before this function runs, only Python's start-up and the package's first lines (a few
     plain modules, no ``typing``) are left to Python's own handling of Ctrl+C.
     """
+    # The commands' linear algebra is small (7 unknowns, sums of 3 columns): one BLAS thread
+    # does it, with the same results. Each OpenBLAS (numpy's, scipy's) would start a worker
+    # per further core, each spinning for tens of ms of CPU as the library loads. Before
+    # numpy is imported; a setting of the user's own is kept.
+    os.environ.setdefault("OPENBLAS_NUM_THREADS", "1")
     try:
         import signal
 
