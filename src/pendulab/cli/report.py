@@ -53,25 +53,25 @@ def report(more: tuple[str, ...], students: str, lang: str, output: str, names: 
     --json prints what it wrote (the file, its size, the group and its pendulum length)
     and the answers the report states, as the answer key gives them for this group.
     """
-    from .._extras import require
-    from ..group import group_length
-
-    for package in ("typst", "matplotlib"):
-        require(package, "pendulab report")
-    from ..report import build_report
-
-    ctx = click.get_current_context()
-    given = ctx.get_parameter_source("students") is not click.core.ParameterSource.DEFAULT
-    # --students 1234 5678 and 1234 5678 alone both mean the group (1234, 5678).
-    numbers = inputs.students("students", ([students] if given or not more else []) + list(more))
-    group_length(numbers)  # a sum with no non-zero digit fails here, before the work
-    cover = None if names is None else inputs.names("names", names, len(numbers))
-    # The cycle collector paused for the one report: its passes over matplotlib's many
-    # short-lived objects cost a few per cent of a warm report's CPU time, and one
-    # report's cycles (a few figures) are small.
+    # The cycle collector paused for the one report, from the imports on: its passes over
+    # the many objects of matplotlib's modules and figures cost several per cent of a warm
+    # report's CPU time, and one report's cycles (a few figures) are small.
     was = gc.isenabled()
     gc.disable()
     try:
+        from .._extras import require
+        from ..group import group_length
+
+        for package in ("typst", "matplotlib"):
+            require(package, "pendulab report")
+        from ..report import build_report
+
+        ctx = click.get_current_context()
+        given = ctx.get_parameter_source("students") is not click.core.ParameterSource.DEFAULT
+        # --students 1234 5678 and 1234 5678 alone both mean the group (1234, 5678).
+        numbers = inputs.students("students", ([students] if given or not more else []) + list(more))
+        group_length(numbers)  # a sum with no non-zero digit fails here, before the work
+        cover = None if names is None else inputs.names("names", names, len(numbers))
         written = build_report(numbers, lang=lang, output=output, progress=True, names=cover)
     finally:
         # Every object the report made moves to the oldest generation unexamined: else the
