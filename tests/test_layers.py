@@ -191,3 +191,24 @@ def test_design_page_lists_the_same_layers():
         for name in names:
             if not name.startswith("__") and name in {p.split(".")[1] for p in modules() if "." in p}:
                 assert f"`{name}`" in line, (layer, name)
+
+
+# --------------------------------------------------------------------------- numba's cache
+def test_kernel_sources_are_what_compiled_code_is_made_of():
+    """``_numba_cache.KERNEL_SOURCES`` lists the modules with kernels and every package module
+    they import, transitively: a cached kernel is kept only while all of them are unchanged."""
+    from pendulab._numba_cache import KERNEL_SOURCES
+
+    def compiles(m: str) -> bool:
+        text = modules()[m].read_text(encoding="utf-8")
+        return any(k in text for k in ("@njit", "njit(", "@intrinsic", "register_jitable"))
+
+    seen: set[str] = set()
+    todo = [m for m in modules() if compiles(m)]
+    while todo:
+        m = todo.pop()
+        if m not in seen:
+            seen.add(m)
+            todo += [t for t, _, _ in imports(m) if t in modules() and t != PACKAGE]
+    files = {str(modules()[m].relative_to(SRC / PACKAGE).as_posix()) for m in seen}
+    assert files == set(KERNEL_SOURCES)

@@ -5,8 +5,8 @@ interpreter and needs neither numpy nor numba. numba compiles the same function,
 into :func:`pendulab._kernels.agm_means` (arrays) and :func:`pendulab._agm.block_iterations`
 (the double-double kernel's iteration count). Its operations are IEEE double sums, products
 and square roots, each correctly rounded and none fused, so the interpreter and the compiled
-loop give the same bits. numba's cache checks the file of the kernel it compiled, not this
-one: after editing the loop, delete the cached kernels that inline it (``__pycache__``).
+loop give the same bits. An edit here compiles those kernels again
+(:data:`pendulab._numba_cache.KERNEL_SOURCES`).
 """
 from __future__ import annotations
 

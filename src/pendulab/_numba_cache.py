@@ -9,10 +9,16 @@ stderr. A cache file that cannot be read back (truncated, or garbage) is treated
 missing: the kernel is compiled again and the file rewritten, instead of an
 ``UnpicklingError`` on every run. Called by :mod:`pendulab._agm`, the first module with
 kernels, before them.
+
+numba keeps a cached kernel while the text of the file that defines it is unchanged, but a
+kernel also holds what it inlines from other files (``_mean.agm`` in ``agm_means``, the step
+of ``_kernels`` in the sweep's lanes, ``methods``' codes): a cached kernel of this package is
+kept only while every file of :data:`KERNEL_SOURCES` is unchanged too.
 """
 from __future__ import annotations
 
 import contextlib
+import hashlib
 import os
 import sys
 import tempfile
@@ -25,6 +31,40 @@ from numba.core import dispatcher as _dispatcher
 config: Any = _config  # CACHE_DIR is set at numba's import, from NUMBA_CACHE_DIR
 
 _DONE: list[str] = []
+
+#: The package's files that compiled code is made of: the modules with kernels and,
+#: transitively, the package modules they import (tests/test_layers.py checks the list).
+KERNEL_SOURCES = (
+    "_agm.py", "_fast.py", "_interrupt.py", "_kernels.py", "_libm.py", "_mean.py", "_numba_cache.py",
+    "errors.py", "methods.py", "sweep/kernel.py", "web/stream.py",
+)
+_PACKAGE = os.path.dirname(os.path.abspath(__file__))
+
+
+def _sources_digest() -> bytes:
+    """SHA-256 of the text of every file of :data:`KERNEL_SOURCES` (a missing one counts as empty)."""
+    digest = hashlib.sha256()
+    for name in KERNEL_SOURCES:
+        digest.update(name.encode())
+        with contextlib.suppress(OSError), open(os.path.join(_PACKAGE, name), "rb") as f:
+            digest.update(hashlib.sha256(f.read()).digest())
+    return digest.digest()
+
+
+def _stamp_kernels_by_their_sources() -> None:
+    """A kernel of this package is cached under the digest of its own file and of
+    :data:`KERNEL_SOURCES`: editing a file it inlines compiles it again."""
+    mixin: Any = caching._SourceFileBackedLocatorMixin
+    own = mixin.get_source_stamp
+    sources = _sources_digest()
+
+    def get_source_stamp(self: Any) -> Any:
+        stamp = own(self)
+        if os.path.abspath(self._py_file).startswith(_PACKAGE + os.sep):
+            return (stamp, sources)
+        return stamp
+
+    mixin.get_source_stamp = get_source_stamp
 
 
 def _usable(py_file: str) -> bool:
@@ -66,6 +106,7 @@ def setup(py_file: str) -> str:
     if _DONE:
         return _DONE[0]
     _tolerate_corrupt_files()
+    _stamp_kernels_by_their_sources()
     how = "default"
     if not _usable(py_file):
         uid = os.getuid() if hasattr(os, "getuid") else 0
