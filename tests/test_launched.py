@@ -10,10 +10,10 @@ from scipy.integrate import solve_ivp
 
 from pendulab.launched import launch, launched_motion
 from pendulab.motion import exact_motion
-from reference import ellipk_period
+from reference import G, ellipk_period
 
 
-def reference(length, alpha, omega0, t, g=9.80665):
+def reference(length, alpha, omega0, t, g=G):
     c = g / length
     sol = solve_ivp(lambda _, z: [z[1], -c * math.sin(z[0])], (0, t[-1]), [alpha, omega0], method="DOP853",
                     rtol=1e-12, atol=1e-12, t_eval=t)
@@ -35,7 +35,7 @@ def test_launched_motion_is_the_pendulums(length, alpha, omega0):
     ref = reference(length, alpha, omega0, t)
     assert np.max(np.abs(theta - ref[0])) < 1e-8 and np.max(np.abs(omega - ref[1])) < 1e-8
     info = launch(length, alpha, omega0)
-    w = math.sqrt(9.80665 / length)
+    w = math.sqrt(G / length)
     assert info.k == pytest.approx(math.hypot(math.sin(alpha / 2), omega0 / (2 * w)), rel=1e-15)
     if info.circulates:
         # Once round in the stated time: theta(t + T) = theta(t) +- 2 pi.

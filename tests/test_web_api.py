@@ -564,7 +564,7 @@ def test_flags_tell_a_bounded_oscillation_from_a_drift_and_a_phase_error(client)
     q = {"length": "3.5", "amplitude": "144deg", "step": "0.2", "t_max": "20", "method": "verlet"}
     flags = client.get("/api/simulate", params=q).json()["flags"]
     full = taylor.simulate(3.5, 0.8 * math.pi, 0.2, 20.0, method="verlet")
-    drift = np.abs(energy(full.theta, full.omega, 3.5) / 9.80665 + math.cos(0.8 * math.pi)) / (1 - math.cos(0.8 * math.pi))
+    drift = np.abs(energy(full.theta, full.omega, 3.5) / G + math.cos(0.8 * math.pi)) / (1 - math.cos(0.8 * math.pi))
     quarter = len(drift) // 4
     assert drift.max() > 0.01 and drift[-quarter:].max() < 1.5 * drift[:quarter].max()  # bounded, by the reference
     assert flags["energy_drift_kind"] == "bounded" and flags["trustworthy"] and flags["warnings"] == []
@@ -589,7 +589,7 @@ def test_motion_is_the_exact_motion(client):
     assert body["period"] == pytest.approx(ellipk_period(20, math.radians(120)), rel=1e-14)
     f = body["frames"]
     assert f["t"][0] == 0 and f["t"][-1] == 30 and f["per_period"] == pytest.approx(16, rel=0.1)
-    sol = solve_ivp(lambda t, z: [z[1], -9.80665 / 20 * math.sin(z[0])], (0, 30), [math.radians(120), 0.0],
+    sol = solve_ivp(lambda t, z: [z[1], -G / 20 * math.sin(z[0])], (0, 30), [math.radians(120), 0.0],
                     method="DOP853", rtol=1e-12, atol=1e-14, t_eval=f["t"])
     assert np.allclose(f["theta"], sol.y[0], rtol=0, atol=1e-9) and np.allclose(f["omega"], sol.y[1], rtol=0, atol=1e-9)
     assert client.get("/api/motion", params={"length": "0", "amplitude": "1"}).json()["error"]["field"] == "length"
@@ -636,7 +636,7 @@ def test_a_launch_is_simulated_and_flagged_against_its_own_exact_motion(client):
     lines = client.get("/api/trajectory.csv", params=q | {"columns": "all", "points": "201"}).text.splitlines()
     rows = np.array([[float(x) for x in line.split(",")] for line in lines[1:]])
     assert rows[0, 2] == 7.0 and rows[0, 1] == math.radians(17)
-    sol = solve_ivp(lambda _, z: [z[1], -9.80665 * math.sin(z[0])], (0, 20), [math.radians(17), 7.0],
+    sol = solve_ivp(lambda _, z: [z[1], -G * math.sin(z[0])], (0, 20), [math.radians(17), 7.0],
                     method="DOP853", rtol=1e-12, atol=1e-12, t_eval=rows[:, 0])
     assert np.max(np.abs(rows[:, 3] - sol.y[0])) < 1e-7 and np.max(np.abs(rows[:, 4] - sol.y[1])) < 1e-7
     assert np.max(np.abs(rows[:, 5])) < 1e-2 and np.max(np.abs(rows[:, 6])) < 1e-4  # taylor2 at h = 1e-3 follows it

@@ -17,6 +17,7 @@ from urllib.parse import parse_qs, urlparse
 import mpmath
 import numpy as np
 import pytest
+from PIL import Image
 from playwright.sync_api import TimeoutError as PlaywrightTimeoutError
 from playwright.sync_api import sync_playwright
 
@@ -122,7 +123,15 @@ def test_page_shows_the_librarys_period_and_follows_the_amplitude(page, server, 
     page.screenshot(path=str(shot), full_page=True)
     if os.environ.get("PENDULAB_SCREENSHOT"):  # to look at the page by eye
         page.screenshot(path=os.environ["PENDULAB_SCREENSHOT"], full_page=True)
-    assert shot.stat().st_size > 50_000  # a drawn page, not a blank one
+    # The angle plot shows its curve: pixels of the first simulation's colour (app.js
+    # COLORS.a, #2f6fdb) along a line, not a blank or a half-drawn plot.
+    plot = tmp_path / "theta.png"
+    page.locator("#plot-theta").screenshot(path=str(plot))
+    pixels = np.asarray(Image.open(plot).convert("RGB"), dtype=int)
+    curve = np.all(np.abs(pixels - (0x2F, 0x6F, 0xDB)) <= 40, axis=-1)
+    assert curve.sum() >= 300, curve.sum()
+    # across the plot's width (the dashed exact motion is drawn over it: not every column)
+    assert np.count_nonzero(curve.any(axis=0)) >= pixels.shape[1] // 3
     assert page.outside == [] and page.errors == []
 
 
