@@ -1,10 +1,13 @@
 """Every ``--json`` of the command line is the ``to_dict()`` of a library result, computed
 here by calling the library, plus only the words the catalogues give for the result's
-decisions: no field is projected, renamed or added by the command line itself."""
+decisions and, where the command writes files, the record of what it wrote: no field of a
+result is projected, renamed or added by the command line itself."""
 from __future__ import annotations
 
+import csv
 import json
 import math
+from pathlib import Path
 
 import numpy as np
 import pytest
@@ -13,12 +16,12 @@ from pendulab import problems
 from pendulab.approximations import approximation_table
 from pendulab.crossing import estimate_periods
 from pendulab.group import group_length
+from pendulab.inputs import angle_range
 from pendulab.key import answer_key, read_entries
 from pendulab.period import FIXED_ITERATIONS_ULPS, periods
 from pendulab.report.key import document
 from pendulab.taylor import simulate
 from pendulab.words import sentence
-from reference import G
 
 
 def plain(x):
@@ -130,13 +133,45 @@ def test_key(cli, tmp_path):
     assert doc == plain(document(answer_key(read_entries(groups))))
 
 
-def test_sweep(cli):
-    """The sweep's table is the result's ``summary()``; beside it, the command's own inputs and
-    files (``output``, ``plot``: none here)."""
+@pytest.mark.parametrize("files", [False, True])
+def test_sweep(cli, tmp_path, files):
+    """The sweep's JSON is the result's ``to_dict()`` (``g`` and the summary per method and
+    step) and the files the command wrote (``output``, ``plot``: null where none)."""
     from pendulab.sweep import sweep
 
+    written = {"output": str(tmp_path / "rows.csv"), "plot": str(tmp_path / "errors.png")} if files else {}
+    args = [a for k, path in written.items() for a in (f"--{k}", path)]
     doc = json.loads(cli("sweep", "--amplitude", "10deg:170deg:5", "--step", "1e-2", "--method", "taylor2,rk4",
-                         "-l", "2", "--json").out)
-    result = sweep(np.radians(np.linspace(10, 170, 5)), [1e-2], ["taylor2", "rk4"], lengths=2.0)
-    assert doc == {"length": 2.0, "g": G, "amplitudes": 5, "output": None, "plot": None,
-                   "summary": plain(result.summary())}
+                         "-l", "2", "--g", "9.8", *args, "--json").out)
+    amplitudes = angle_range("amplitude", "10deg:170deg:5", 5)  # the parser's doubles, as the command's
+    result = sweep(amplitudes, [1e-2], ["taylor2", "rk4"], lengths=2.0, g=9.8)
+    assert {k: doc.pop(k) for k in ("output", "plot")} == {"output": written.get("output"), "plot": written.get("plot")}
+    assert doc == plain(result.to_dict())
+    assert doc["g"] == 9.8 and [(s["method"], s["pendulums"]) for s in doc["summary"]] == [("taylor2", 5), ("rk4", 5)]
+    if files:  # the paths named are the files written: the rows, and a PNG
+        with open(written["output"], newline="") as f:
+            rows = list(csv.DictReader(f))
+        assert np.array_equal([float(r["cubic"]) for r in rows], result["cubic"], equal_nan=True)
+        with open(written["plot"], "rb") as f:
+            assert f.read(8) == b"\x89PNG\r\n\x1a\n"
+
+
+def test_report(cli, tmp_path, monkeypatch):
+    """What ``report`` wrote (the file, its size, its language) and the answers it states: the
+    key's document for the group, names and all. The PDF itself is test_report.py's: here the
+    builder writes a stand-in, so the test reads the record the command prints about it."""
+    import pendulab.report
+    from pendulab.key import Entry
+
+    def build(numbers, lang, output, progress, names):
+        Path(output).write_bytes(b"%PDF-1.7 stand-in")
+        return Path(output)
+
+    monkeypatch.setattr(pendulab.report, "build_report", build)
+    out = tmp_path / "r.pdf"
+    doc = json.loads(cli("report", "--students", "99999,1", "--names", "Ana; Rui", "--lang", "pt", "-o", out,
+                         "--json").out)
+    assert doc == {"output": str(out), "bytes": 17, "lang": "pt",
+                   "answers": plain(document(answer_key([Entry((99999, 1), ("Ana", "Rui"))])))}
+    group = doc["answers"]["groups"][0]
+    assert (group["students"], group["names"]) == ([99999, 1], ["Ana", "Rui"])  # the cover's names too

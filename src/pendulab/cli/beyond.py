@@ -129,13 +129,12 @@ def sweep(amplitudes, steps, methods, length, output, plot, scheduler, g, as_jso
         from ..plots.beyond import sweep_errors
 
         save_plot(lambda ax: sweep_errors(result, ax), plot, (7.0, 4.6))
-    summary = result.summary()
-    if as_json:
-        emit_json({"length": float(length), "g": float(g), "amplitudes": len(amplitudes),
-                   "output": output, "plot": plot, "summary": summary})
+    d = result.to_dict()
+    if as_json:  # the result, and the files written
+        emit_json(d | {"output": output, "plot": plot})
         return
     click.echo(f"{'method':>10} {'h':>8} {'found':>11} {'max |T_cubic - T|':>18} {'max rel':>10} {'steps':>12}")
-    for r in summary:
+    for r in d["summary"]:
         click.echo(f"{r['method']:>10} {r['step']:>8g} {r['found']:>5}/{r['pendulums']:<5} "
                    f"{r['max_abs_cubic_error']:>18.3e} {r['max_rel_cubic_error']:>10.3e} {r['pendulum_steps']:>12}")
     for path in (output, plot):

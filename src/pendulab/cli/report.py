@@ -50,8 +50,8 @@ STUDENTS = Parsed(lambda s: s, "numbers")  # checked with the extra NUMBERS, in 
 def report(more: tuple[str, ...], students: str, lang: str, output: str, names: str | None, as_json: bool) -> None:
     """Write the coursework report: every question 1(a)-5(d) answered, at most 15 A4 pages.
 
-    --json prints what it wrote (the file, its size, the group and its pendulum length)
-    and the answers the report states, as the answer key gives them for this group.
+    --json prints what it wrote (the file, its size, its language) and the answers the
+    report states, as `pendulab key --json` gives them for this group.
     """
     # The cycle collector paused for the one report, from the imports on: its passes over
     # the many objects of matplotlib's modules and figures cost several per cent of a warm
@@ -82,10 +82,9 @@ def report(more: tuple[str, ...], students: str, lang: str, output: str, names: 
         if was:
             gc.enable()
     click.echo(f"pendulab: wrote {output}", err=True)
-    if as_json:
-        from ..key import answer_key
+    if as_json:  # the file written, and the answers: the key's document for this one group
+        from ..key import Entry, answer_key
+        from ..report.key import document
 
-        answers = answer_key([numbers]).to_dict()
-        emit_json({"output": str(written), "bytes": written.stat().st_size, "lang": lang,
-                   "students": list(numbers), "length_text": group_length(numbers).length_text,
-                   "answers": {"group": answers["groups"][0], "common": answers["common"]}})
+        answers = document(answer_key([Entry(numbers, cover)]))
+        emit_json({"output": str(written), "bytes": written.stat().st_size, "lang": lang, "answers": answers})

@@ -183,4 +183,4 @@ def sweep(
     columns["status"] = np.asarray(STATUS)[columns["status"]]
     columns["linear_error"] = columns["linear"] - columns["period"]
     columns["cubic_error"] = columns["cubic"] - columns["period"]
-    return SweepResult(columns)
+    return SweepResult(columns, g)

@@ -26,10 +26,17 @@ class SweepResult(Result):
     ``length``, ``amplitude`` (rad), ``period`` (AGM period (8), converged), ``status`` (one of
     :data:`STATUS`), ``steps`` (steps taken), ``linear``, ``cubic`` (period estimates; NaN
     unless ``status == "found"``), ``linear_error``, ``cubic_error`` (``estimate - period``),
-    ``cubic_error_estimate`` (the interpolation error estimate of problem 3(d)).
+    ``cubic_error_estimate`` (the interpolation error estimate of problem 3(d)); and ``g``
+    (m/s^2), the same for every row.
     """
 
     columns: dict[str, np.ndarray]
+    g: float
+
+    def to_dict(self) -> dict[str, Any]:
+        """Without the rows (:meth:`write` and :meth:`to_frame` give them): ``g`` and the
+        :meth:`summary`, one entry per (method, step) (``pendulab sweep --json``)."""
+        return {"g": self.g, "summary": self.summary()}
 
     def _columns(self) -> dict[str, np.ndarray]:
         return self.columns
