@@ -136,7 +136,7 @@ def serve(port: int, host: str, allow_host: tuple[str, ...]) -> None:
     from ..web.views import warm
 
     warm_kernels()  # the library's kernels compiled (or loaded) while the server starts
-    # and the explorer's own (web/_view.py), through one tiny request.
+    # and the explorer's own (web/stream.py), through one tiny request.
     threading.Thread(target=_quietly, args=(warm,), name="pendulab-warm-web", daemon=True).start()
     where = urls(host, port)
     if len(where) == 1:
