@@ -127,7 +127,7 @@ def page_rows(cold: int = COLD, typed: int = TYPED) -> list[dict]:
     frame rate against the aims of issue 20 (no peer program draws this page)."""
     m = measure(cold, typed)
     med = statistics.median
-    aim = "aim (issue 20)"
+    aim = "aim"
     return [
         {"what": f"explorer page, cold load, gzip (kB on the wire, median of {cold})", "ours": med(r[0] for r in m["gz"]) / 1e3,
          "peer_name": "the same, no compression", "peer": med(r[0] for r in m["plain"]) / 1e3, "target": "", "lower": True},
