@@ -58,6 +58,7 @@ def test_error_falls_with_the_step_and_failures_are_reported():
     summary = r.summary()
     assert [s["step"] for s in summary] == [0.2, 1e-2, 1e-3]
     assert [s["found"] for s in summary] == [1, 1, 2]
+    assert r.to_dict() == {"g": G, "summary": summary}  # not the rows: write() and to_frame() give them
 
 
 def test_progress_counts_every_pendulum():
