@@ -255,3 +255,49 @@ def test_ctrl_c_while_the_command_line_loads_is_one_line():
         assert loaded[-1] == "signal" and "pendulab" in loaded, loaded  # the package, then the entry point
         said = [line for line in rest.splitlines() if not line.startswith("import time:")]
         assert code == 130 and said in (["pendulab: interrupted"], ["pendulab length: interrupted"]), (delay, code, rest)
+
+
+# --- A signal while numba compiles a kernel ------------------------------------------------
+
+#: Run ``pendulab`` with the signal ``SIG`` sent from inside LLVM's callback into Python
+#: (numba's "object compiled" hook, through ``ctypes``) at the ``K``-th kernel object the main
+#: thread compiles: where a signal that came while LLVM worked is handled. Python's own
+#: handler raises there, and ``ctypes`` prints the exception and goes on.
+_IN_COMPILE = """\
+import os, signal, sys, threading
+from numba.core import codegen
+hook = codegen.CPUCodeLibrary._object_compiled_hook.__func__
+seen = [0]
+def notify(cls, ll_module, buf):
+    if threading.current_thread() is threading.main_thread():
+        seen[0] += 1
+        if seen[0] == {k}:
+            os.kill(os.getpid(), {sig})
+    hook(cls, ll_module, buf)
+codegen.CPUCodeLibrary._object_compiled_hook = classmethod(notify)
+sys.argv = ["pendulab", *{args!r}]
+from pendulab.__main__ import run
+sys.exit(run())
+"""
+
+SWEEP = ["sweep", "--amplitude", "0.1:3:40", "--step", "1e-2", "--method", "rk4", "--output", "out.csv"]
+
+
+@pytest.mark.parametrize(("args", "k", "sig"), [
+    (SWEEP, 1, signal.SIGINT),  # the periods' AGM kernel, compiled before the sweep's threads start
+    (SWEEP, 5, signal.SIGTERM),
+    (["simulate", "--t-max", "1", "--step", "1e-3", "--plot", "out.png"], 1, signal.SIGINT),
+    (["estimate", "-l", "1", "-a", "2", "--step", "1e-3"], 3, signal.SIGTERM),
+])
+def test_a_signal_while_a_kernel_compiles_ends_the_run(tmp_path, args, k, sig):
+    """With an empty numba cache (each kernel compiled on first use), SIGINT or SIGTERM
+    that reaches Python while a kernel compiles in the main thread: exit 130 (143) and one
+    line, after the compilation; never "Exception ignored" and a run that goes on to exit 0.
+    No output file is written, no temporary file left."""
+    code = _IN_COMPILE.format(k=k, sig=int(sig), args=args)
+    env = {**os.environ, "NUMBA_CACHE_DIR": str(tmp_path / "numba"), "TMPDIR": str(tmp_path)}
+    res = subprocess.run([sys.executable, "-c", code], cwd=tmp_path, capture_output=True, text=True,
+                         timeout=600, env=env)
+    word, status = ("interrupted", 130) if sig == signal.SIGINT else ("terminated", 143)
+    assert (res.returncode, res.stderr.splitlines()) == (status, [f"pendulab {args[0]}: {word}"]), res.stderr
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["numba"]

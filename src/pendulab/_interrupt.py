@@ -8,6 +8,13 @@ by one that only records the signal, the drivers run their kernels in chunks and
 the record between them (:func:`run_pieces`), and on leaving the original handlers are
 put back and the signal is delivered again, in plain Python code.
 
+The first call of a kernel compiles it (seconds, with an empty numba cache), and LLVM
+calls back into Python through ``ctypes`` as it finishes each object: a signal that came
+while LLVM worked is handled in that callback, where a ``KeyboardInterrupt`` is printed as
+"Exception ignored" and lost (the command runs on and exits 0). So every call of a kernel
+in the main thread is made inside :func:`deferred` (:func:`run_pieces` for the long runs),
+its compilation included.
+
 :class:`Terminated` is what the CLI's SIGTERM handler raises (:func:`terminate_handler`):
 like Ctrl+C it unwinds, so ``finally`` blocks and temporary folders are cleaned up.
 

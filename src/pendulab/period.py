@@ -19,6 +19,7 @@ from fractions import Fraction
 from typing import TYPE_CHECKING, Any, SupportsFloat, TypeGuard, overload
 
 from . import _validate as _v
+from ._interrupt import deferred
 from ._mean import FIXED, MAX_ITERATIONS, RTOL, agm
 from .cases import G_EXACT, G
 from .exact import Exact, arb_precision, below_pi
@@ -162,7 +163,8 @@ def _means(x: Any, of_angle: bool, iterations: int | None) -> Any:
     else:
         from ._kernels import agm_means
 
-        out = agm_means(flat, of_angle, n, rtol)
+        with deferred():  # a signal while it compiles or runs waits for its return (_interrupt)
+            out = agm_means(flat, of_angle, n, rtol)
     return out.reshape(x.shape)
 
 
@@ -258,7 +260,8 @@ def agm_period(length: float | Exact | ArrayLike, amplitude: float | Exact | Arr
     flat_l = lengths.reshape(1) if lengths.size == 1 else np.ascontiguousarray(np.broadcast_to(lengths, shape)).ravel()
     out = np.empty(flat_a.size)
     hard = np.empty(flat_a.size, np.int64)  # pages only touched where written
-    count, bad = agm_periods_dd(flat_a, flat_l, g, out, out[:0], hard)
+    with deferred():  # a signal while it compiles or runs waits for its return (_interrupt)
+        count, bad = agm_periods_dd(flat_a, flat_l, g, out, out[:0], hard)
     if bad >= 0:
         _v.amplitude("amplitude", float(flat_a[bad]))  # raises
     for i in hard[:count]:  # the rounding test failed: a few in 10^6
