@@ -11,7 +11,7 @@ library's own work (the floor the web layer cannot go below):
              the phase and animation samples, the exact motion and the global error
 3. HTTP      a GET to ``pendulab serve`` on loopback (keep-alive), JSON decoded
 
-The aim (issue 5) is under 50 ms for (3). Run: ``.venv/bin/python benchmarks/bench_web.py``
+The aim is under 50 ms for (3). Run: ``.venv/bin/python benchmarks/bench_web.py``
 (about 30 s). The load benchmark (200 heavy requests at once) is
 ``benchmarks/bench_web_load.py``.
 

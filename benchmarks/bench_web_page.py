@@ -13,7 +13,7 @@ tests drive), on loopback. Side by side in one run, as ratios:
 4. frames   animation frames a second while playing, and the script time of one frame
             (the swing, the photogate, the energy bars, the four plot cursors)
 
-The aims (issue 20): at most 1.5 MB on the wire, the first plot within 1.5 s, a new period
+The aims: at most 1.5 MB on the wire, the first plot within 1.5 s, a new period
 within 700 ms of typing, 60 frames a second. Run: ``.venv/bin/python benchmarks/bench_web_page.py``
 (about a minute).
 """
@@ -33,7 +33,7 @@ from pendulab.web.child import serve_in_child
 URL = "/?length=3.5&amplitude=144&unit=deg&step=1e-3&t_max=20"
 COLD = 5
 TYPED = 10
-#: The aims (issue 20): bytes on the wire, ms to the first plot, ms from a keystroke to the new period, frames a second.
+#: The aims: bytes on the wire, ms to the first plot, ms from a keystroke to the new period, frames a second.
 AIMS = {"wire": 1.5e6, "plot": 1500.0, "period": 700.0, "fps": 60.0}
 ARGS = ["--headless", "--no-sandbox", "--disable-gpu", "--no-first-run", "--disable-background-networking"]
 
@@ -124,7 +124,7 @@ def measure(cold: int = COLD, typed: int = TYPED) -> dict:
 def page_rows(cold: int = COLD, typed: int = TYPED) -> list[dict]:
     """The page's rows of the one table (``benchmarks/run.py``): the bytes a browser fetches
     against the same page uncompressed (a peer measured in the same run), and the times and
-    frame rate against the aims of issue 20 (no peer program draws this page)."""
+    frame rate against the aims (no peer program draws this page)."""
     m = measure(cold, typed)
     med = statistics.median
     aim = "aim"

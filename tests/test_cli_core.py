@@ -151,7 +151,7 @@ def test_bad_input_one_line_exit_2(cli, args, fragments):
 
 def test_no_return_suggestion_works(cli):
     res = cli("estimate", "--step", "1e-2", "--t-max", "3")
-    suggested = res.err.rsplit("--t-max", 1)[1].split()[0]
+    suggested = res.err.rsplit("--t-max = ", 1)[1].split()[0]  # "--t-max = 7.224 s holds the return"
     assert cli("estimate", "--step", "1e-2", "--t-max", suggested).code == 0
 
 

@@ -279,7 +279,7 @@ def test_graded_panels_reach_rounding_level_up_to_pi(gap):
 
 def test_equal_panels_converge_once_they_resolve_the_peak():
 
-    # The issue's case: k rounds to 1 at pi - 1e-9; the k' form gives the true 29.126 with grading
+    # The worst case: k rounds to 1 at pi - 1e-9; the k' form gives the true 29.126 with grading
     # and the equal panels move towards it instead of settling on 26.168.
     alpha = math.pi - 1e-3  # k' = 5e-4: n = 5/k' = 1e4 panels give 1e-12
     ref = float(reference_period(1.0, alpha))

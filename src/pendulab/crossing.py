@@ -287,7 +287,7 @@ def search_error(s: PeriodSearch) -> NumericalError:
     if s.status == Status.NO_RETURN:
         return NoReturnError(
             f"the simulation does not return to P = (alpha, 0) within t_max = {t_max:g} s "
-            f"(exact period {s.period:.6g} s); try --t-max {s.suggested_t_max:.4g}",
+            f"(period T = {s.period:.6g} s by the AGM (8)); t_max = {s.suggested_t_max:.4g} s holds the return",
             t_max=t_max, suggested_t_max=s.suggested_t_max,
         )
     if s.status == Status.LEFT_OSCILLATION:

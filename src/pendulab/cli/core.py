@@ -164,7 +164,7 @@ def estimate(length, amplitude, steps, t_max, method, dense, g, as_json):
         return
     rows, period = r.rows, r.period
     click.echo(f"l = {length!r} m, alpha = {float(amplitude)!r} rad, method {method}")
-    click.echo(f"exact period (AGM, (8))  T = {period!r} s")
+    click.echo(f"period (AGM, (7)-(8))  T = {period!r} s")
     head = f"{'h':>8} {'bracket [t_j, t_j+1]':>25} {'linear':>18} {'cubic p(0)':>18} {'interp. err. est.':>17} {'|linear - T|':>12} {'|cubic - T|':>12} {'order':>6}"
     if dense:
         head += f" {'dense output':>18} {'|dense - T|':>12}"

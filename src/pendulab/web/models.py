@@ -172,7 +172,7 @@ class Launch(_Model):
     omega0: float = Field(description="theta'(0), rad/s")
     k: float = Field(description="sqrt(E0/(2 m g l)): below 1 it swings, above 1 it goes round")
     circulates: bool
-    period: float = Field(description="s: the exact period, or the time for one turn when it goes round")
+    period: float = Field(description="s: the period by the AGM (7)-(8), or the time for one turn when it goes round")
     turning_angle: float | None = Field(description="2 asin(k), rad, where it swings; null when it goes round")
     turning_angle_deg: float | None
 

@@ -121,7 +121,7 @@ def search_reason(s: PeriodSearch) -> str:
                 f"{s.amplitude:.6g} rad with {s.method}; use a smaller step")
     if s.status == Status.NO_RETURN:
         return (f"the simulation does not return to P = (alpha, 0) within the search's 1.5 T + 4h = {s.t_max:.4g} s "
-                f"(T = {s.period:.6g} s, the exact period): its motion is far from the pendulum's; use a smaller step")
+                f"(T = {s.period:.6g} s by the AGM (8)): its motion is far from the pendulum's; use a smaller step")
     return (f"the sign change of theta' comes at step j = {s.j}, too early for the interpolation's nodes before it: "
             f"step h = {s.step:g} s is too large; use a smaller step")
 
