@@ -301,3 +301,30 @@ def test_a_signal_while_a_kernel_compiles_ends_the_run(tmp_path, args, k, sig):
     word, status = ("interrupted", 130) if sig == signal.SIGINT else ("terminated", 143)
     assert (res.returncode, res.stderr.splitlines()) == (status, [f"pendulab {args[0]}: {word}"]), res.stderr
     assert sorted(p.name for p in tmp_path.iterdir()) == ["numba"]
+
+
+@pytest.mark.parametrize("method", ["rk4", "taylor2"])  # the scalar searches; the lock-step lanes of (3)
+def test_a_signal_stops_a_long_sweep_on_threads_within_seconds(tmp_path, method):
+    """A sweep on two threads whose every block of 16 pendulums is minutes of work (h = 1e-7
+    near the top): SIGINT or SIGTERM in the middle stops every thread within a piece, and the
+    run ends with its one line and 130 (143) within 10 s, with no output file."""
+    env = {**os.environ, "NUMBA_NUM_THREADS": "2", "TMPDIR": str(tmp_path)}
+    warm = ["sweep", "--amplitude", "1:2:2", "--step", "1e-2", "--method", method]  # kernels compiled first
+    subprocess.run([sys.executable, "-m", "pendulab", *warm], env=env, capture_output=True, timeout=600, check=True)
+    args = ["sweep", "--amplitude", "170deg:179deg:32", "--step", "1e-7", "--method", method, "--output", "out.csv"]
+    for delay, sig in ((1.0, signal.SIGINT), (3.0, signal.SIGTERM), (5.0, signal.SIGINT)):
+        proc = subprocess.Popen([sys.executable, "-m", "pendulab", *args], cwd=tmp_path, env=env,
+                                stdout=subprocess.DEVNULL, stderr=subprocess.PIPE, text=True)
+        start = time.monotonic()
+        while not _handled(proc.pid) and proc.poll() is None and time.monotonic() - start < 60:
+            time.sleep(0.005)
+        time.sleep(delay)
+        assert proc.poll() is None, proc.stderr.read() if proc.stderr else ""  # still at work: minutes of it
+        proc.send_signal(sig)
+        sent = time.monotonic()
+        _, err = proc.communicate(timeout=600)
+        took = time.monotonic() - sent
+        word, status = ("interrupted", 130) if sig == signal.SIGINT else ("terminated", 143)
+        assert (proc.returncode, err.splitlines()) == (status, [f"pendulab sweep: {word}"]), err
+        assert took < 10, f"stopped {took:.1f} s after the signal"
+        assert sorted(p.name for p in tmp_path.iterdir()) == [], "an output or temporary file was left"

@@ -182,6 +182,30 @@ def test_threads_give_one_thread_bit_for_bit(threads, code):
         assert np.array_equal(a, b)
 
 
+@pytest.mark.parametrize("threads", [1, 2])
+@pytest.mark.parametrize(("code", "order"), [(0, 2), (1, 4), (3, 6)])  # taylor2 (lanes), rk4, taylor:6
+def test_blocks_run_in_small_pieces_give_one_call_bit_for_bit(monkeypatch, threads, code, order):
+    """Each block of the sweep runs in pieces (so that Ctrl+C stops it between two); with
+    pieces of a few hundred steps, each pendulum (n = 0 .. 6000, found or not, over the top
+    for (3)) equals the kernels' one call over all the steps, bit for bit."""
+    from pendulab import _kernels
+    from pendulab.sweep import BLOCK, first_returns, first_returns_lanes, first_returns_serial
+    from pendulab.sweep import kernel as sweep_kernel
+
+    rng = np.random.default_rng(11)
+    m = 2 * BLOCK + 7
+    alphas = np.concatenate([[0.0, 1e-3, 3.1, 3.14159, 2.0, 1.0, 1.0], rng.uniform(0.1, 3.1, m - 7)])
+    cs = -G / rng.uniform(0.3, 3.0, m)
+    n = np.concatenate([[1000, 1000, 3000, 5000, 0, 1, 3], rng.integers(10, 6000, m - 7)])
+    one = first_returns_lanes(alphas, cs, 1e-2, n) if code == 0 else first_returns_serial(code, order, alphas, cs, 1e-2, n)
+    monkeypatch.setattr(sweep_kernel, "CHUNK_COST", 997)  # lock-step pieces of 997 // 16 steps
+    monkeypatch.setattr(_kernels, "CHUNK_COST", 997)  # the scalar searches' pieces
+    cut = first_returns(code, order, alphas, cs, 1e-2, n, threads=threads)
+    for a, b in zip(one, cut, strict=True):
+        assert np.array_equal(a, b)
+    assert {0, 1} <= set(one[0].tolist()) and (code != 0 or 2 in one[0])  # found, no return, over the top
+
+
 def test_lanes_sincos_within_one_ulp():
     """The lock-step kernel's sine and cosine against mpmath, over the range theta takes."""
     from pendulab.sweep.kernel import sincos
@@ -227,7 +251,9 @@ def test_lanes_vectorise():
         pytest.skip(f"the check reads x86-64 assembly; this machine is {platform.machine()}")
     # Compiled afresh (a kernel loaded from numba's cache has no assembly text to show).
     fresh = njit(nogil=True)(_lanes.py_func)
-    fresh(np.array([1.0]), np.array([-9.8]), 0.1, np.array([10]), *(np.zeros(1, np.int64),) * 2,
+    z = np.zeros((6, 1))
+    z[0] = 1.0
+    fresh(np.array([-9.8]), 0.1, np.array([10]), 0, 11, z, *(np.zeros(1, np.int64),) * 3,
           np.zeros((1, 5)), np.zeros((1, 5)))
     asm = "".join(fresh.inspect_asm().values())
     assert "mulpd" in asm and "addpd" in asm

@@ -177,7 +177,7 @@ def drive(method, order, a, b, c, h, i0, i1, stride, n, z1, z2):
     return a, b, k
 
 
-def _piece(method, order) -> int:
+def piece_steps(method, order) -> int:
     """Steps per piece of a run cut into pieces (:func:`pendulab._interrupt.run_pieces`): the
     same cost for every method, so that Ctrl+C waits one piece at most (tens of ms)."""
     method = TAYLOR2 if method == TAYLOR2_FAST else method  # no dearer than (3)
@@ -204,7 +204,7 @@ def thinned(method, order, alpha, c, h, n, stride, size):
         state[:] = a, b, k + kept
         return False
 
-    run_pieces(pieces(n, _piece(code, order)), run)
+    run_pieces(pieces(n, piece_steps(code, order)), run)
     return z1, z2
 
 
@@ -324,7 +324,7 @@ def first_return_pieces(method, order, alpha, c, h, n):
         out[:] = search_return(code, order, c, h, n, lo, hi, z1w, z2w)
         return out[0] != NO_RETURN  # found, or stopped for good
 
-    run_pieces(pieces(n, _piece(code, order)), run)
+    run_pieces(pieces(n, piece_steps(code, order)), run)
     status, j = out
     if status != FOUND:
         z1w[:] = 0.0

@@ -20,14 +20,27 @@ prints the worst cases found); ``tests/test_sweep.py`` checks fixed amplitudes.
 """
 from __future__ import annotations
 
+import collections
+import itertools
 import math
-from concurrent.futures import ThreadPoolExecutor
+import threading
+from concurrent.futures import FIRST_EXCEPTION, ThreadPoolExecutor, wait
 
 import numpy as np
 from numba import get_num_threads, njit
 
-from .._interrupt import pieces, run_pieces
-from .._kernels import FOUND, NO_RETURN, TAYLOR2, UNDECIDED, first_return, kernel_code, return_rule
+from .._interrupt import CHUNK_COST, deferred, run_pieces, stop_when
+from .._kernels import (
+    FOUND,
+    NO_RETURN,
+    TAYLOR2,
+    UNDECIDED,
+    first_return,
+    kernel_code,
+    piece_steps,
+    return_rule,
+    search_return,
+)
 
 
 @njit(cache=True, nogil=True)
@@ -102,24 +115,31 @@ _RUNNING, _LAST, _DONE = 0, 1, 2
 
 
 @njit(cache=True, nogil=True)
-def _lanes(alphas, cs, h, n, status, j, w1, w2):
-    """(3) for up to :data:`LANES` pendulums in lock-step, to each one's first return.
+def _lanes(cs, h, n, i0, i1, z, state, status, j, w1, w2):
+    """Steps ``i0 .. i1 - 1`` of (3) for up to :data:`LANES` pendulums in lock-step, each to
+    its first return; returns True when every lane is done.
 
     The same search as :func:`pendulab._kernels.first_return`, per lane, by the same rule
     (:func:`pendulab._kernels.return_rule`): the step loop over the lanes and the rule's
     test for every lane vectorise (no branch but the rule's choices among constants,
     which LLVM makes selects); the rare events (a sign change, the end of a lane's
     steps) are handled in a second loop only at the steps where one occurs.
+
+    ``z`` holds the rows ``z1, z2`` (``Z_i``), ``Z_{i-1}`` and ``Z_{i-2}`` of every lane and
+    ``state`` each lane's progress, at ``i0`` on entry and at ``i1`` on return: the next call
+    resumes the search, the same steps bit for bit as one call over every step
+    (``i1 = n.max() + 1``). They are copied into arrays of this call for the loop.
     """
-    m = alphas.size
-    z1 = alphas.copy()
-    z2 = np.zeros(m)
-    a1, b1, a2, b2 = np.zeros(m), np.zeros(m), np.zeros(m), np.zeros(m)
+    m = cs.size
+    z1, z2, a1, b1, a2, b2 = z[0].copy(), z[1].copy(), z[2].copy(), z[3].copy(), z[4].copy(), z[5].copy()
     z1n, z2n = np.empty(m), np.empty(m)
-    state = np.zeros(m, np.int64)
     hh = 0.5 * h * h
-    left = m
-    for i in range(n.max() + 1):
+    left = 0
+    for k in range(m):
+        left += state[k] != _DONE
+    for i in range(i0, min(i1, n.max() + 1)):
+        if left == 0:
+            break
         for k in range(m):  # equations (3), as taylor2_step
             s, co = sincos(z1[k])
             z1n[k] = z1[k] + h * z2[k] + hh * cs[k] * s
@@ -148,11 +168,11 @@ def _lanes(alphas, cs, h, n, status, j, w1, w2):
                 if state[k] == _DONE:
                     left -= 1
                     z1n[k] = z2n[k] = 0.0  # at rest: no further events
-            if left == 0:
-                break
         for k in range(m):
             a2[k], b2[k], a1[k], b1[k] = a1[k], b1[k], z1[k], z2[k]
             z1[k], z2[k] = z1n[k], z2n[k]
+    z[0], z[1], z[2], z[3], z[4], z[5] = z1, z2, a1, b1, a2, b2
+    return left == 0
 
 
 @njit(cache=True, nogil=True)
@@ -170,8 +190,42 @@ def first_returns_lanes(alphas, cs, h, n_steps):
     z2w = np.zeros((m, 5))
     for lo in range(0, m, LANES):
         hi = min(lo + LANES, m)
-        _lanes(alphas[lo:hi], cs[lo:hi], h, n_steps[lo:hi], status[lo:hi], j[lo:hi], z1w[lo:hi], z2w[lo:hi])
+        z = np.zeros((6, hi - lo))
+        z[0] = alphas[lo:hi]
+        n = n_steps[lo:hi]
+        _lanes(cs[lo:hi], h, n, 0, n.max() + 1, z, np.zeros(hi - lo, np.int64), status[lo:hi], j[lo:hi],
+               z1w[lo:hi], z2w[lo:hi])
     return status, j, z1w, z2w
+
+
+@njit(cache=True, nogil=True)
+def _serial(method, order, alphas, cs, h, n_steps, status, j, z1w, z2w, at, budget):
+    """:func:`first_returns_serial`'s searches from pendulum ``at[0]``, its step ``at[1]``, for
+    about ``budget`` steps (each pendulum counts one at least); ``at`` is moved on, and the
+    result is True when every pendulum is done. The window ``z1w[i], z2w[i]`` carries a
+    search between calls (:func:`pendulab._kernels.search_return`): the same steps, bit for
+    bit, as :func:`pendulab._kernels.first_return` in one call."""
+    m = len(alphas)
+    i, lo = at[0], at[1]
+    while i < m and budget > 0:
+        n = n_steps[i]
+        if lo == 0:
+            z1w[i, :] = 0.0
+            z2w[i, :] = 0.0
+            z1w[i, 2] = alphas[i]
+        hi = min(n, lo + budget)
+        s, ji = search_return(kernel_code(method, cs[i], h), order, cs[i], h, n, lo, hi, z1w[i], z2w[i])
+        budget -= max(hi - lo, 1)
+        if s != NO_RETURN or hi >= n:  # this pendulum's search is over
+            status[i], j[i] = s, ji
+            if s != FOUND:
+                z1w[i, :] = 0.0
+                z2w[i, :] = 0.0
+            i, lo = i + 1, 0
+        else:
+            lo = hi
+    at[0], at[1] = i, lo
+    return i >= m
 
 
 #: Pendulums per task of :func:`first_returns`: small enough that the threads finish
@@ -181,43 +235,96 @@ BLOCK = 16
 _POOL: list[ThreadPoolExecutor] = []
 
 
+def _block(method, order, alphas, cs, h, n_steps, lanes, out):
+    """One block's searches as pieces: a function that runs the next piece, of about
+    ``CHUNK_COST`` steps of (3), writing into ``out`` (status, j and the windows of these
+    pendulums), and returns True when the block is done. Run by
+    :func:`pendulab._interrupt.run_pieces`, Ctrl+C in the main thread, or a set
+    :func:`~pendulab._interrupt.stop_when` event in a worker, stops it within one piece."""
+    status, j, z1w, z2w = out
+    if lanes:
+        m = len(alphas)
+        z = np.zeros((6, m))
+        z[0] = alphas
+        state = np.zeros(m, np.int64)
+        size = max(1, CHUNK_COST // m)  # lock-step steps of every lane
+        at = [0]
+
+        def piece() -> bool:
+            lo = at[0]
+            at[0] += size
+            return bool(_lanes(cs, h, n_steps, lo, at[0], z, state, status, j, z1w, z2w))
+    else:
+        where = np.zeros(2, np.int64)
+        budget = piece_steps(method, order)
+
+        def piece() -> bool:
+            return bool(_serial(method, order, alphas, cs, h, n_steps, status, j, z1w, z2w, where, budget))
+    return piece
+
+
 def first_returns(method, order, alphas, cs, h, n_steps, threads: int | None = None):
     """The period search for each pendulum on ``threads`` threads (default: numba's thread count).
 
-    (3) (``method`` taylor2) runs :func:`first_returns_lanes` on the pendulums sorted by
-    step count, the other methods :func:`first_returns_serial`. Blocks of :data:`BLOCK`
-    pendulums go to the threads as they become free; the kernels release the GIL, so the
-    threads run on separate cores. Each pendulum gives the same result, bit for bit, on
-    any number of threads. (A ``parallel=True`` build of the serial loop ran each thread
-    about 1.5x slower than the serial kernel.)
+    (3) (``method`` taylor2) runs the lock-step kernel of :func:`first_returns_lanes` on the
+    pendulums sorted by step count, the other methods the searches of
+    :func:`first_returns_serial`. Blocks of :data:`BLOCK` pendulums go to the threads as they
+    become free; the kernels release the GIL, so the threads run on separate cores. Each
+    pendulum gives the same result, bit for bit, on any number of threads. (A
+    ``parallel=True`` build of the serial loop ran each thread about 1.5x slower than the
+    serial kernel.) Each block runs in pieces: Ctrl+C or SIGTERM stops every thread within
+    one piece (tens of ms), and is raised once they all stopped.
     """
     threads = get_num_threads() if threads is None else threads
     lanes = method == TAYLOR2
     order_ = np.argsort(n_steps, kind="stable") if lanes else None
     if lanes:
         alphas, cs, n_steps = alphas[order_], cs[order_], n_steps[order_]
-
-    def kernel(a, c, n):
-        return first_returns_lanes(a, c, h, n) if lanes else first_returns_serial(method, order, a, c, h, n)
-
     m = len(alphas)
-    if threads <= 1 or m <= BLOCK:  # in this thread: blocks, with Ctrl+C waiting for one at most
-        parts: list = []
+    out: tuple = np.zeros(m, np.int64), np.zeros(m, np.int64), np.zeros((m, 5)), np.zeros((m, 5))
+    blocks = [_block(method, order, alphas[lo:lo + BLOCK], cs[lo:lo + BLOCK], h, n_steps[lo:lo + BLOCK], lanes,
+                     tuple(x[lo:lo + BLOCK] for x in out)) for lo in range(0, m, BLOCK)]
+    if threads <= 1 or m <= BLOCK:  # in this thread, every piece of every block in one run_pieces
+        left = collections.deque(blocks)
 
         def run(lo: int, hi: int) -> bool:
-            parts.append(kernel(alphas[lo:hi], cs[lo:hi], n_steps[lo:hi]))
-            return False
+            if left and left[0]():
+                left.popleft()
+            return not left
 
-        run_pieces(pieces(max(m, 1), BLOCK), run)
-        out = tuple(np.concatenate([p[k] for p in parts]) for k in range(4)) if len(parts) > 1 else parts[0]
+        run_pieces(itertools.repeat((0, 0)), run)
     else:
-        if not _POOL or _POOL[0]._max_workers != threads:
-            _POOL[:] = [ThreadPoolExecutor(threads, thread_name_prefix="pendulab-sweep")]
-        parts = list(_POOL[0].map(
-            lambda lo: kernel(alphas[lo:lo + BLOCK], cs[lo:lo + BLOCK], n_steps[lo:lo + BLOCK]), range(0, m, BLOCK)))
-        out = tuple(np.concatenate([p[k] for p in parts]) for k in range(4))
+        _on_threads(blocks, threads)
     if lanes:
         back = np.empty_like(order_)
         back[order_] = np.arange(m)
         out = tuple(x[back] for x in out)
     return out
+
+
+def _on_threads(blocks, threads: int) -> None:
+    """Run every block (:func:`_block`) to its end on a pool of ``threads`` threads. The main
+    thread waits under :func:`~pendulab._interrupt.deferred`: on a signal every block stops at
+    its next piece (:func:`~pendulab._interrupt.stop_when`), those not begun never begin,
+    and the signal is raised once no thread works any more (none runs on into the exit)."""
+    if not _POOL or _POOL[0]._max_workers != threads:
+        _POOL[:] = [ThreadPoolExecutor(threads, thread_name_prefix="pendulab-sweep")]
+    stop = threading.Event()
+
+    def task(piece) -> None:
+        with stop_when(stop):
+            run_pieces(itertools.repeat((0, 0)), lambda lo, hi: piece())
+
+    with deferred() as got:
+        tasks = [_POOL[0].submit(task, piece) for piece in blocks]
+        try:
+            pending = set(tasks)
+            while pending and not got:
+                done, pending = wait(pending, timeout=0.05, return_when=FIRST_EXCEPTION)
+                for f in done:
+                    f.result()  # a block's error, raised here
+        finally:
+            stop.set()
+            for f in tasks:
+                f.cancel()
+            wait(tasks)
