@@ -26,6 +26,8 @@ SLOW_TESTS = frozenset({
     "test_interrupt.py::test_ctrl_c_while_the_command_line_loads_is_one_line",
     "test_interrupt.py::test_a_signal_while_a_kernel_compiles_ends_the_run",
     "test_interrupt.py::test_a_signal_stops_a_long_sweep_on_threads_within_seconds",
+    "test_interrupt.py::test_ctrl_c_while_a_cold_sweep_compiles_ends_with_one_line",
+    "test_interrupt.py::test_a_signal_during_the_servers_warm_up_stops_it_with_its_line",
     "test_hostile_env.py::test_groups_from_a_named_pipe_with_no_writer_do_not_hang",
     "test_hostile_env.py::test_endless_standard_input_is_capped",
     "test_hostile_env.py::test_groups_from_standard_input",

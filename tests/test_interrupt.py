@@ -3,6 +3,7 @@ SIGTERM sent to a real ``pendulab`` process ends it with one line and 130 or 143
 from __future__ import annotations
 
 import os
+import shutil
 import signal
 import subprocess
 import sys
@@ -119,12 +120,12 @@ def _handled(pid: int) -> bool:
     return all(mask >> (s - 1) & 1 for s in (signal.SIGINT, signal.SIGTERM))
 
 
-def _signal_run(args, delay, sig, tmp_path):
-    """Start ``pendulab ARGS`` with its own TMPDIR; ``delay`` s after its entry point started,
-    send ``sig`` if it still runs; return (exit status, stderr)."""
+def _signal_run(args, delay, sig, tmp_path, **more_env):
+    """Start ``pendulab ARGS`` with its own TMPDIR (and ``more_env``); ``delay`` s after its
+    entry point started, send ``sig`` if it still runs; return (exit status, stderr)."""
     tmpdir = tmp_path / "tmp"
     tmpdir.mkdir(exist_ok=True)
-    env = {**os.environ, "TMPDIR": str(tmpdir), "PYTHONUNBUFFERED": "1"}
+    env = {**os.environ, "TMPDIR": str(tmpdir), "PYTHONUNBUFFERED": "1", **more_env}
     proc = subprocess.Popen([sys.executable, "-m", "pendulab", *map(str, args)], cwd=tmp_path, env=env,
                             stdout=subprocess.DEVNULL, stderr=subprocess.PIPE, text=True)
     start = time.monotonic()
@@ -303,6 +304,17 @@ def test_a_signal_while_a_kernel_compiles_ends_the_run(tmp_path, args, k, sig):
     assert sorted(p.name for p in tmp_path.iterdir()) == ["numba"]
 
 
+def test_ctrl_c_while_a_cold_sweep_compiles_ends_with_one_line(tmp_path):
+    """A real Ctrl+C from outside at several moments of a sweep's first run after an install
+    (an empty numba cache: seconds of compiling, in the main thread and on the sweep's
+    threads): each try ends with 130 and one line, and writes no output file."""
+    for i, delay in enumerate((0.5, 1.5, 2.5, 3.5)):
+        code, err = _signal_run(SWEEP, delay, signal.SIGINT, tmp_path, NUMBA_CACHE_DIR=str(tmp_path / f"numba{i}"),
+                                NUMBA_NUM_THREADS="2")
+        assert _assert_stopped(code, err, signal.SIGINT, "sweep"), (delay, code, err)
+        assert not (tmp_path / "out.csv").exists()
+
+
 @pytest.mark.parametrize("method", ["rk4", "taylor2"])  # the scalar searches; the lock-step lanes of (3)
 def test_a_signal_stops_a_long_sweep_on_threads_within_seconds(tmp_path, method):
     """A sweep on two threads whose every block of 16 pendulums is minutes of work (h = 1e-7
@@ -328,3 +340,34 @@ def test_a_signal_stops_a_long_sweep_on_threads_within_seconds(tmp_path, method)
         assert (proc.returncode, err.splitlines()) == (status, [f"pendulab sweep: {word}"]), err
         assert took < 10, f"stopped {took:.1f} s after the signal"
         assert sorted(p.name for p in tmp_path.iterdir()) == [], "an output or temporary file was left"
+
+
+@pytest.mark.parametrize("sig", [signal.SIGINT, signal.SIGTERM])
+def test_a_signal_during_the_servers_warm_up_stops_it_with_its_line(tmp_path, sig):
+    """``pendulab serve`` with an empty numba cache compiles its kernels on warm-up threads
+    while it starts serving: SIGINT or SIGTERM then stops it within 10 s with its one line
+    and 130 (143), the compilation on those threads notwithstanding."""
+    pytest.importorskip("uvicorn")
+    import socket
+
+    env = {**os.environ, "NUMBA_CACHE_DIR": str(tmp_path / "numba"), "TMPDIR": str(tmp_path), "PYTHONUNBUFFERED": "1"}
+    word, status = ("interrupted", 130) if sig == signal.SIGINT else ("terminated", 143)
+    for delay in (0.2, 1.5, 3.0):
+        with socket.socket() as s:
+            s.bind(("127.0.0.1", 0))
+            port = s.getsockname()[1]
+        proc = subprocess.Popen([sys.executable, "-m", "pendulab", "serve", "--port", str(port)], cwd=tmp_path, env=env,
+                                stdout=subprocess.DEVNULL, stderr=subprocess.PIPE, text=True)
+        assert proc.stderr is not None
+        banner = proc.stderr.readline()
+        assert banner.startswith("pendulab explorer: "), banner
+        time.sleep(delay)
+        assert proc.poll() is None
+        proc.send_signal(sig)
+        sent = time.monotonic()
+        rest = proc.stderr.read()
+        code = proc.wait(timeout=120)
+        took = time.monotonic() - sent
+        assert (code, rest.splitlines()) == (status, [f"pendulab serve: {word}"]), rest
+        assert took < 10, f"stopped {took:.1f} s after the signal"
+        shutil.rmtree(tmp_path / "numba", ignore_errors=True)  # each try compiles afresh
