@@ -7,6 +7,8 @@ import numpy as np
 import pyarrow.csv as pacsv
 import pyarrow.parquet as pq
 import pytest
+from hypothesis import given, settings
+from hypothesis import strategies as st
 
 from pendulab.cli import main
 from pendulab.crossing import estimate_period
@@ -279,3 +281,23 @@ def test_lanes_estimates_within_the_stated_bound_of_estimate_period():
                 if r["amplitude"][i] <= np.radians(179.99):
                     assert abs(ours - theirs) <= 2e-7 * theirs, (h, i, key)
                 assert abs(ours - theirs) <= 5e-2 * abs(theirs - est.period), (h, i, key)
+
+
+@settings(max_examples=60, deadline=None)
+@given(st.lists(st.integers(0, 10**6), min_size=0, max_size=200), st.integers(1, 20), st.integers(1, 10**7))
+def test_tasks_cut_the_pendulums_into_whole_groups_that_hold_the_work(n, block, work):
+    """The sweep's tasks: in order, covering every pendulum once, whole groups of ``block``
+    (but the last), each the fewest groups whose steps reach ``work`` (or the rest)."""
+    from pendulab.sweep.kernel import tasks
+
+    n = np.array(n, dtype=np.int64)
+    cut = tasks(n, block, work)
+    if len(n) == 0:
+        assert cut == []
+        return
+    assert [lo for lo, _ in cut] == [0] + [hi for _, hi in cut[:-1]] and cut[-1][1] == len(n)
+    for lo, hi in cut:
+        assert lo % block == 0 and (hi % block == 0 or hi == len(n)) and hi > lo
+        groups = [n[g:min(g + block, hi)].sum() for g in range(lo, hi, block)]
+        assert sum(groups[:-1]) < work  # one group fewer would not hold the work
+        assert sum(groups) >= work or hi == len(n)

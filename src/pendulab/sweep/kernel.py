@@ -180,22 +180,44 @@ def first_returns_lanes(alphas, cs, h, n_steps):
     """:func:`first_returns_serial` for (3), :data:`LANES` pendulums at a time in lock-step.
 
     Pendulums of similar step counts should be neighbours (:func:`first_returns` sorts
-    them): a block runs until its slowest lane is done. Each pendulum's result does not
-    depend on its neighbours.
+    them): a group of lanes runs until its slowest lane is done. Each pendulum's result
+    does not depend on its neighbours.
     """
     m = len(alphas)
     status = np.zeros(m, np.int64)
     j = np.zeros(m, np.int64)
     z1w = np.zeros((m, 5))
     z2w = np.zeros((m, 5))
-    for lo in range(0, m, LANES):
-        hi = min(lo + LANES, m)
-        z = np.zeros((6, hi - lo))
-        z[0] = alphas[lo:hi]
-        n = n_steps[lo:hi]
-        _lanes(cs[lo:hi], h, n, 0, n.max() + 1, z, np.zeros(hi - lo, np.int64), status[lo:hi], j[lo:hi],
-               z1w[lo:hi], z2w[lo:hi])
+    z = np.zeros((6, m))
+    z[0] = alphas
+    _lanes_run(cs, h, n_steps, z, np.zeros(m, np.int64), status, j, z1w, z2w, np.zeros(2, np.int64),
+               np.iinfo(np.int64).max)
     return status, j, z1w, z2w
+
+
+@njit(cache=True, nogil=True)
+def _lanes_run(cs, h, n_steps, z, state, status, j, w1, w2, at, budget):
+    """:func:`_lanes` over groups of :data:`LANES` pendulums in turn, from group ``at[0]``, its
+    step ``at[1]``, for about ``budget`` pendulum-steps; ``at`` is moved on, and the result
+    is True when every group is done. ``z`` (rows as in :func:`_lanes`, one column per
+    pendulum, row 0 the amplitudes before a group begins) and ``state`` carry the search
+    between calls: the same steps, bit for bit, as one call. The loop over the groups is
+    compiled: a piece of many short searches costs one call from Python, not one a group."""
+    m = cs.size
+    g, i = at[0], at[1]
+    while g * LANES < m and budget > 0:
+        lo = g * LANES
+        hi = min(lo + LANES, m)
+        steps = max(1, budget // (hi - lo))
+        done = _lanes(cs[lo:hi], h, n_steps[lo:hi], i, i + steps, z[:, lo:hi], state[lo:hi], status[lo:hi],
+                      j[lo:hi], w1[lo:hi], w2[lo:hi])
+        budget -= min(steps, n_steps[lo:hi].max() + 1 - i) * (hi - lo)  # a group done early used less
+        if done:
+            g, i = g + 1, 0
+        else:
+            i += steps
+    at[0], at[1] = g, i
+    return g * LANES >= m
 
 
 @njit(cache=True, nogil=True)
@@ -228,10 +250,32 @@ def _serial(method, order, alphas, cs, h, n_steps, status, j, z1w, z2w, at, budg
     return i >= m
 
 
-#: Pendulums per task of :func:`first_returns`: small enough that the threads finish
-#: together (the periods differ by 5x between 1 and 179 degrees), large enough that a task
-#: outlasts its scheduling.
+#: Pendulums per task of :func:`first_returns`, at least: small enough that the threads
+#: finish together (the periods differ by 5x between 1 and 179 degrees). A task takes
+#: further groups of as many until it holds :data:`TASK_STEPS` steps, so that a task of
+#: short searches outlasts its scheduling and its Python calls.
 BLOCK = 16
+#: Steps (pendulum-steps) a task of :func:`first_returns` gathers at least: a few ms.
+TASK_STEPS = 1 << 18
+
+
+def tasks(n_steps, block: int = BLOCK, work: int = TASK_STEPS) -> list[tuple[int, int]]:
+    """``[0, m)`` cut into ``(lo, hi)``, in order: each the fewest whole groups of ``block``
+    pendulums (the last group may be short) that hold ``work`` steps of ``n_steps``, at
+    least one group."""
+    m = len(n_steps)
+    if m == 0:
+        return []
+    held = np.concatenate(([0], np.cumsum(np.add.reduceat(np.asarray(n_steps, np.int64), np.arange(0, m, block)))))
+    groups = len(held) - 1
+    out, g = [], 0
+    while g < groups:
+        k = min(max(int(np.searchsorted(held, held[g] + work)), g + 1), groups)
+        out.append((g * block, min(k * block, m)))
+        g = k
+    return out
+
+
 _POOL: list[ThreadPoolExecutor] = []
 
 
@@ -247,13 +291,10 @@ def _block(method, order, alphas, cs, h, n_steps, lanes, out):
         z = np.zeros((6, m))
         z[0] = alphas
         state = np.zeros(m, np.int64)
-        size = max(1, CHUNK_COST // m)  # lock-step steps of every lane
-        at = [0]
+        at = np.zeros(2, np.int64)
 
         def piece() -> bool:
-            lo = at[0]
-            at[0] += size
-            return bool(_lanes(cs, h, n_steps, lo, at[0], z, state, status, j, z1w, z2w))
+            return bool(_lanes_run(cs, h, n_steps, z, state, status, j, z1w, z2w, at, CHUNK_COST))
     else:
         where = np.zeros(2, np.int64)
         budget = piece_steps(method, order)
@@ -268,7 +309,8 @@ def first_returns(method, order, alphas, cs, h, n_steps, threads: int | None = N
 
     (3) (``method`` taylor2) runs the lock-step kernel of :func:`first_returns_lanes` on the
     pendulums sorted by step count, the other methods the searches of
-    :func:`first_returns_serial`. Blocks of :data:`BLOCK` pendulums go to the threads as they
+    :func:`first_returns_serial`. Tasks of whole groups of :data:`BLOCK` pendulums, about
+    :data:`TASK_STEPS` steps each (:func:`tasks`), go to the threads as they
     become free; the kernels release the GIL, so the threads run on separate cores. Each
     pendulum gives the same result, bit for bit, on any number of threads. (A
     ``parallel=True`` build of the serial loop ran each thread about 1.5x slower than the
@@ -282,9 +324,9 @@ def first_returns(method, order, alphas, cs, h, n_steps, threads: int | None = N
         alphas, cs, n_steps = alphas[order_], cs[order_], n_steps[order_]
     m = len(alphas)
     out: tuple = np.zeros(m, np.int64), np.zeros(m, np.int64), np.zeros((m, 5)), np.zeros((m, 5))
-    blocks = [_block(method, order, alphas[lo:lo + BLOCK], cs[lo:lo + BLOCK], h, n_steps[lo:lo + BLOCK], lanes,
-                     tuple(x[lo:lo + BLOCK] for x in out)) for lo in range(0, m, BLOCK)]
-    if threads <= 1 or m <= BLOCK:  # in this thread, every piece of every block in one run_pieces
+    blocks = [_block(method, order, alphas[lo:hi], cs[lo:hi], h, n_steps[lo:hi], lanes,
+                     tuple(x[lo:hi] for x in out)) for lo, hi in tasks(n_steps)]
+    if threads <= 1 or len(blocks) <= 1:  # in this thread, every piece of every block in one run_pieces
         left = collections.deque(blocks)
 
         def run(lo: int, hi: int) -> bool:
