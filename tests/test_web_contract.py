@@ -49,6 +49,18 @@ def test_the_page_reads_only_endpoints_with_a_published_answer(schema):
             assert "422" in responses, path
 
 
+def test_published_keys_use_the_glossarys_names(schema):
+    """One name per quantity (docs/glossary.md): the period answer's keys are the library's
+    (:class:`pendulab.period.Periods`) and "exact" names only the exact motion, never a period."""
+    from dataclasses import fields
+
+    from pendulab.period import Periods
+
+    props = {name: set(m.get("properties", {})) for name, m in schema["components"]["schemas"].items()}
+    assert props["PeriodAnswer"] - {"amplitude_deg"} <= {f.name for f in fields(Periods)}
+    assert {k for keys in props.values() for k in keys if "exact" in k} == {"exact", "exact_frames", "exact_phase"}
+
+
 def test_the_published_schemas_forbid_unlisted_keys(schema):
     for name, model in schema["components"]["schemas"].items():
         if "properties" in model and name not in ("HTTPValidationError", "ValidationError"):

@@ -56,7 +56,7 @@ class PeriodAnswer(_Model):
     amplitude_deg: float
     g: float = Field(description="m/s^2")
     period: float = Field(description="the AGM period, equations (7)-(8), converged, s")
-    small_angle: float = Field(description="2 pi sqrt(l/g), s")
+    small_angle_period: float = Field(description="2 pi sqrt(l/g), s")
 
 
 class EstimateErrors(_Model):
@@ -234,7 +234,7 @@ class PeriodCurveAnswer(_Model):
     """``GET /api/period_curve``: T(alpha)/T0 from 0 to 179 deg."""
 
     amplitude_deg: list[float]
-    exact_ratio: list[float] = Field(description="the AGM period over 2 pi sqrt(l/g)")
+    period_ratio: list[float] = Field(description="the AGM period over 2 pi sqrt(l/g)")
     approximations: list[Approximation]
 
 

@@ -1,7 +1,7 @@
 """The explorer's answers: checked parameters in, JSON-ready dicts (or CSV text) out.
 
 A presenter, like the CLI: it reads the query with :mod:`pendulab.web.parameters`, calls
-:func:`pendulab.crossing.search_period`, :func:`pendulab.period.agm_period` and the
+:func:`pendulab.crossing.search_period`, :func:`pendulab.period.periods` and the
 streamed pass of :mod:`pendulab.web.sampling`, and renders their results; the shape of
 each answer is :mod:`pendulab.web.models`. Every bad input raises
 :class:`pendulab.errors.InputError` (the route turns it into status 422 naming the field
@@ -54,17 +54,11 @@ def _num(x: float) -> float | None:
 
 
 def period_view(length: float, amplitude: float, g: float) -> dict[str, Any]:
-    """The exact (AGM, equations (7)-(8)) and small-angle periods."""
-    from ..period import agm_period, small_angle_period
+    """The periods of :func:`pendulab.period.periods` that :class:`models.PeriodAnswer` lists
+    (the AGM period (7)-(8) and the small-angle one), and the amplitude in degrees."""
+    from ..period import periods
 
-    return {
-        "length": length,
-        "amplitude": amplitude,
-        "amplitude_deg": math.degrees(amplitude),
-        "g": g,
-        "period": float(agm_period(length, amplitude, g)),
-        "small_angle": float(small_angle_period(length, g)),
-    }
+    return _answer(models.PeriodAnswer, periods(length, amplitude, g).to_dict()) | {"amplitude_deg": math.degrees(amplitude)}
 
 
 def estimate_view(length: float, amplitude: float, step: float, g: float, method: str) -> dict[str, Any]:
@@ -430,9 +424,9 @@ CURVE_FORMULAS = ("small-angle", "coursework-9", "kidd-fogg", "lima-arun", "ganl
 
 @functools.cache
 def period_curve_view() -> dict[str, Any]:
-    """``GET /api/period_curve``: ``T(alpha)/T0`` from 0 to 179 deg, exact and approximated.
+    """``GET /api/period_curve``: ``T(alpha)/T0`` from 0 to 179 deg, by the AGM and approximated.
 
-    ``exact_ratio``: the AGM period (7)-(8) over the small-angle one; each approximation's
+    ``period_ratio``: the AGM period (7)-(8) over the small-angle one; each approximation's
     ratio is its formula's (:mod:`pendulab.approximations`, with its source).
     """
     from ..approximations import FORMULAS
@@ -441,7 +435,7 @@ def period_curve_view() -> dict[str, Any]:
     deg = np.arange(0.0, 180.0)
     alpha = np.radians(deg)
     t0 = float(small_angle_period(1.0, G))
-    exact = [float(agm_period(1.0, float(a), G)) / t0 for a in alpha]
+    period_ratio = [float(agm_period(1.0, float(a), G)) / t0 for a in alpha]
     approx = []
     for name in CURVE_FORMULAS:
         f = FORMULAS[name]
@@ -449,7 +443,7 @@ def period_curve_view() -> dict[str, Any]:
             ratio = np.broadcast_to(f.ratio(alpha), alpha.shape)
         approx.append({"name": name, "label": f.label + (" (eq. 9)" if name == "coursework-9" else ""),
                        "source": f.source, "ratio": finite_list(np.asarray(ratio, dtype=float))})
-    return {"amplitude_deg": deg.tolist(), "exact_ratio": exact, "approximations": approx}
+    return {"amplitude_deg": deg.tolist(), "period_ratio": period_ratio, "approximations": approx}
 
 
 def config_view() -> dict[str, Any]:
@@ -469,7 +463,7 @@ def config_view() -> dict[str, Any]:
 
 
 def period_endpoint(params: Mapping[str, str]) -> dict[str, Any]:
-    """``GET /api/period``: the exact period of a pendulum."""
+    """``GET /api/period``: the AGM and small-angle periods of a pendulum (:func:`period_view`)."""
     p = parameters.pendulum(params)
     return period_view(p["length"], p["amplitude"], p["g"])
 

@@ -333,7 +333,7 @@ function renderPeriods() {
   $("period-label").textContent = !L ? "Exact (AGM, eq. 8)"
     : L.circulates ? "Exact, one turn over the top (DLMF 22.19)" : `Exact, launched (turning angle ${L.turning_angle_deg.toPrecision(6)}°)`;
   $("period-exact").textContent = fix(p.period);
-  $("period-small").textContent = fix(p.small_angle);
+  $("period-small").textContent = fix(p.small_angle_period);
   $("period2-line").hidden = !sims.second;
   if (sims.second) {
     $("period2-exact").textContent = fix(sims.second.period);
@@ -627,18 +627,18 @@ async function renderRatio() {
     curve = r.body;
   }
   const x = curve.amplitude_deg;
-  const traces = [{ x, y: curve.exact_ratio, mode: "lines", name: "exact (AGM)", line: { color: COLORS.exact, width: 2.5 },
+  const traces = [{ x, y: curve.period_ratio, mode: "lines", name: "exact (AGM)", line: { color: COLORS.exact, width: 2.5 },
     hovertemplate: "α = %{x}°<br>T/T0 = %{y:.6f}<extra></extra>" }];
   const dashes = ["dash", "dot", "dashdot", "longdash", "longdashdot"];
   const colors = ["#8a94a6", "#e69f00", "#009e73", "#cc79a7", "#56b4e9"];
   curve.approximations.forEach((a, i) => traces.push({ x, y: a.ratio, mode: "lines", name: a.label,
     line: { color: colors[i % colors.length], width: 1.6, dash: dashes[i % dashes.length] }, hovertemplate: `${a.label}<br>α = %{x}°<br>T/T0 = %{y:.5f}<extra></extra>` }));
-  const mark = (p, color, name) => ({ x: [p.amplitude_deg], y: [p.period / p.small_angle], mode: "markers", name,
+  const mark = (p, color, name) => ({ x: [p.amplitude_deg], y: [p.period / p.small_angle_period], mode: "markers", name,
     marker: { color, size: 12, line: { color: "#fff", width: 1.5 } }, hovertemplate: `${name}<br>α = %{x:.4g}°<br>T/T0 = %{y:.6f}<extra></extra>` });
   const p = sims.a.period, L = sims.a.launch;
   // A launched pendulum sits on the curve at its turning angle; one that goes round is not on it.
   if (!L) traces.push(mark(p, COLORS.p, "this pendulum"));
-  else if (!L.circulates) traces.push(mark({ amplitude_deg: L.turning_angle_deg, period: p.period, small_angle: p.small_angle }, COLORS.p, "this pendulum"));
+  else if (!L.circulates) traces.push(mark({ amplitude_deg: L.turning_angle_deg, period: p.period, small_angle_period: p.small_angle_period }, COLORS.p, "this pendulum"));
   if (sims.second) traces.push(mark(sims.second, COLORS.second, "second pendulum"));
   // The legend inside, top left: below 90° every curve is near 1, the corner is empty.
   plot("plot-ratio", traces, layout("Period against amplitude: T(α)/T₀", "α (deg)", "T / T₀", {
