@@ -115,3 +115,14 @@ def test_plot_draws_each_formulas_errors():
         assert np.array_equal(np.isnan(y), err < rounding)
         assert np.array_equal(y[~np.isnan(y)], err[err >= rounding])
     assert ax.get_yscale() == "log"
+
+
+def test_period_ratio_is_the_agm_period_over_the_small_angle_one():
+    # T/T0 = 2 K(sin^2(alpha/2)) / pi, mpmath's complete elliptic integral at 30 digits.
+    alpha = np.radians([0.5, 45, 144, 179.9])
+    table = approximation_errors(alpha)
+    assert "period_ratio" in table.to_frame().columns
+    for a, r in zip(alpha, table.period_ratio):
+        with mpmath.workdps(30):
+            ref = 2 * mpmath.ellipk(mpmath.sin(mpmath.mpf(a) / 2) ** 2) / mpmath.pi
+        assert r == pytest.approx(float(ref), rel=4e-16)

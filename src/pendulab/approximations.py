@@ -135,7 +135,7 @@ class ApproximationErrors(Result):
     ----------
     amplitudes : ndarray, shape (n,)
         ``alpha`` (rad).
-    exact_ratio : ndarray, shape (n,)
+    period_ratio : ndarray, shape (n,)
         ``T/T0 = 1/M(1, cos(alpha/2))`` (AGM to convergence).
     formulas : tuple of Formula
     errors : dict name -> ndarray, shape (n,)
@@ -143,12 +143,12 @@ class ApproximationErrors(Result):
     """
 
     amplitudes: np.ndarray
-    exact_ratio: np.ndarray
+    period_ratio: np.ndarray
     formulas: tuple[Formula, ...]
     errors: dict[str, np.ndarray]
 
     def _columns(self) -> dict[str, np.ndarray]:
-        return {"amplitude": self.amplitudes, "exact_ratio": self.exact_ratio, **self.errors}
+        return {"amplitude": self.amplitudes, "period_ratio": self.period_ratio, **self.errors}
 
     def max_amplitude_within(self, name: str, tol: float) -> float:
         """The largest tabulated amplitude up to which ``|error| <= tol`` holds throughout."""
