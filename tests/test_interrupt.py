@@ -16,6 +16,7 @@ from hypothesis import strategies as st
 
 from pendulab import _kernels
 from pendulab._interrupt import deferred, pieces
+from reference import G
 
 METHODS = [(0, 2), (1, 4), (2, 2), (3, 1), (3, 5), (3, 12)]  # taylor2, rk4, verlet, taylor:1, 5, 12
 
@@ -36,7 +37,7 @@ def test_pieces_give_the_same_bits_as_one_call(m, alpha, h, n, stride, piece):
     """trajectory, thinned and the period search, cut into pieces of any size (here a few
     steps, so that a run has many), equal one call of the kernel over the whole run."""
     method, order = m
-    c = -9.80665 / 2.0
+    c = -G / 2.0
     ref1, ref2 = _one_call(method, order, alpha, c, h, n)
     one = _kernels.first_return(_kernels.kernel_code(method, c, h), order, alpha, c, h, n)
     with pytest.MonkeyPatch.context() as mp:
@@ -57,7 +58,7 @@ def _cut(method, order, alpha, c, h, n, stride, ref1, ref2, one):
 
 def test_fast_kernels_in_pieces_give_the_same_bits(monkeypatch):
     """(3) long and fine runs through the table's sine (the fast kernel code), in pieces."""
-    alpha, c, h, n = 2.5, -9.80665 / 2.0800838231, 1e-5, 501_234
+    alpha, c, h, n = 2.5, -G / 2.0800838231, 1e-5, 501_234
     assert _kernels.kernel_code(0, c, h) == _kernels.TAYLOR2_FAST
     ref1, ref2 = _one_call(0, 2, alpha, c, h, n)
     one = _kernels.first_return(_kernels.TAYLOR2_FAST, 2, alpha, c, h, n)
