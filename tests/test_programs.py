@@ -312,3 +312,32 @@ def test_programs_refuse_a_folder_whose_parent_is_missing(tmp_path, capsys):
     lines = capsys.readouterr().err.strip().splitlines()
     assert len(lines) == 1 and "--output" in lines[0] and "inside a folder that exists" in lines[0]
     assert not (tmp_path / "no").exists()
+
+
+@settings(max_examples=40, deadline=None)
+@given(st.integers(1, 9), st.integers(0, 2**32 - 1), st.floats(-12, 0))
+def test_program_cholesky_is_lapacks_and_refuses_what_is_not_positive_definite(n, seed, log_shift):
+    """problem4.py's Cholesky factor and solve against numpy's (LAPACK) and scipy's
+    cho_solve, on random symmetric positive definite matrices down to a condition of
+    about 10^12; a matrix with a non-positive eigenvalue raises."""
+    import scipy.linalg
+
+    p4 = P["problem4.py"]
+    rng = np.random.default_rng(seed)
+    q, _ = np.linalg.qr(rng.standard_normal((n, n)))
+    lam = np.logspace(log_shift, 0, n)
+    a = (q * lam) @ q.T
+    a = 0.5 * (a + a.T)
+    cond = 10.0 ** -log_shift
+    low = p4.cholesky(a)
+    assert np.allclose(low, np.linalg.cholesky(a), rtol=1e-14 * cond, atol=1e-15)
+    assert np.array_equal(np.triu(low, 1), np.zeros((n, n)))
+    r = rng.standard_normal(n)
+    from pendulab.lsq import cholesky_solve
+
+    c = cholesky_solve(a, r)
+    expected = scipy.linalg.cho_solve(scipy.linalg.cho_factor(a, lower=True), r)
+    assert np.allclose(c, expected, rtol=0, atol=1e-14 * cond * np.abs(expected).max())
+    bad = (q * np.concatenate(([-lam[0]], lam[1:]))) @ q.T
+    with pytest.raises(ValueError, match="not positive definite"):
+        p4.cholesky(0.5 * (bad + bad.T))

@@ -12,8 +12,10 @@ zero gives the normal equations ``A c = r`` with ``A_ik = sum_j phi_i(t_j) phi_k
 factorisation that succeeds, by its smallest eigenvalue and by Weyl's inequality: a
 perturbation ``E`` moves every eigenvalue by at most ``||E||_2``.
 
-The rounded system is solved by Cholesky (``scipy.linalg.cho_solve``: ``A`` is symmetric
-positive definite, so Cholesky is the stable, half-cost choice); the coefficients of the
+The rounded system is solved by Cholesky (:func:`cholesky_solve`: ``A`` is symmetric
+positive definite, so Cholesky is the stable, half-cost choice; the coursework's program
+``problem4.py`` writes the same loops, and ``numpy.linalg.cholesky``, LAPACK's, checks the
+factor in :func:`definiteness`); the coefficients of the
 unrounded problem by ``numpy.linalg.lstsq`` (SVD of ``Phi``, which does not square the
 condition number) show how far the rounding moves them.
 
@@ -136,6 +138,31 @@ class Definiteness(Result):
 #: sign) against mpmath's ``eigsy`` finds errors up to about ``4 n u ||A||_2`` (nearly
 #: equal eigenvalues; ``docs/accuracy.md``): ``c = 8`` leaves a factor 2.
 EIGENVALUE_ERROR_FACTOR = 8
+
+
+def cholesky_solve(a: np.ndarray, r: np.ndarray) -> np.ndarray:
+    """``c`` with ``A c = r`` for ``A`` symmetric positive definite: ``A = L L^T`` column by
+    column (``L_kk = sqrt(A_kk - sum_{m<k} L_km^2)``, ``L_ik = (A_ik - sum_{m<k} L_im L_km) / L_kk``,
+    Burden & Faires [1] Algorithm 6.6), then ``L z = r`` forward and ``L^T c = z`` backward.
+
+    The operations of the coursework's program ``problem4.py``, in its order: the same
+    doubles (tested). Raises :class:`NumericalError` where a pivot is not positive.
+    """
+    n = len(r)
+    low = np.zeros_like(a)
+    for k in range(n):
+        d = a[k, k] - low[k, :k] @ low[k, :k]
+        if not d > 0:
+            raise NumericalError(f"the normal matrix is not positive definite (pivot {k + 1}: {d:.3e})")
+        low[k, k] = math.sqrt(d)
+        for i in range(k + 1, n):
+            low[i, k] = (a[i, k] - low[i, :k] @ low[k, :k]) / low[k, k]
+    z, c = np.zeros(n), np.zeros(n)
+    for i in range(n):
+        z[i] = (r[i] - low[i, :i] @ z[:i]) / low[i, i]
+    for i in reversed(range(n)):
+        c[i] = (z[i] - low[i + 1:, i] @ c[i + 1:]) / low[i, i]
+    return c
 
 
 def definiteness(a: np.ndarray, unrounded: np.ndarray | None = None) -> Definiteness:
@@ -283,9 +310,7 @@ def least_squares(
             f"the normal matrix is not positive definite (smallest eigenvalue {proof.min_eigenvalue:.3e}): "
             "the basis functions are dependent on these points"
         )
-    from scipy.linalg import cho_factor, cho_solve
-
-    coef = cho_solve(cho_factor(a, lower=True), r)
+    coef = cholesky_solve(a, r)
     phi = design_matrix(t, basis)
     ref = np.linalg.lstsq(phi, y, rcond=None)[0]
     fitted = phi @ coef

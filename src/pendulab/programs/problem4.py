@@ -7,7 +7,6 @@ import math
 from decimal import ROUND_HALF_UP, Decimal
 
 import numpy as np
-from scipy.linalg import cho_factor, cho_solve
 
 from agm import t_hat
 from taylor import taylor
@@ -36,14 +35,33 @@ def normal_equations(t, y):
     a = 0.5 * (a + a.T)  # exactly symmetric (BLAS may sum the triangles apart)
     return round6(a), round6(phi.T @ np.asarray(y))
 
+def cholesky(a):
+    """4(c): A = L L^T, L lower triangular, column by column:
+    L_kk = sqrt(A_kk - sum_m<k L_km^2), L_ik = (A_ik - sum_m<k L_im L_km) / L_kk.
+    Every root is of a positive number only for A symmetric positive definite."""
+    n = len(a)
+    low = np.zeros_like(a)
+    for k in range(n):
+        d = a[k, k] - low[k, :k] @ low[k, :k]
+        if not d > 0:
+            raise ValueError("A is not positive definite")
+        low[k, k] = math.sqrt(d)
+        for i in range(k + 1, n):
+            low[i, k] = (a[i, k] - low[i, :k] @ low[k, :k]) / low[k, k]
+    return low
+
 def fit(t, y):
-    """4(d): the Cholesky factor A = L L^T (L lower triangular with a positive
-    diagonal) exists only for A symmetric positive definite; L L^T c = r gives c."""
+    """4(d): A c = r as L z = r (forward), then L^T c = z (backward)."""
     a, r = normal_equations(t, y)
-    factor = cho_factor(a, lower=True)  # LinAlgError if A is not positive definite
-    coef = cho_solve(factor, r)
+    low = cholesky(a)
+    n = len(r)
+    z, coef = np.zeros(n), np.zeros(n)
+    for i in range(n):
+        z[i] = (r[i] - low[i, :i] @ z[:i]) / low[i, i]
+    for i in reversed(range(n)):
+        coef[i] = (z[i] - low[i + 1:, i] @ coef[i + 1:]) / low[i, i]
     residuals = np.asarray(y) - basis(t) @ coef
-    return a, r, np.diag(factor[0]), coef, residuals
+    return a, r, np.diag(low), coef, residuals
 
 if __name__ == "__main__":
     t_max = math.ceil(t_hat(L, ALPHA))
