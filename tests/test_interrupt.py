@@ -372,3 +372,26 @@ def test_a_signal_during_the_servers_warm_up_stops_it_with_its_line(tmp_path, si
         assert (code, rest.splitlines()) == (status, [f"pendulab serve: {word}"]), rest
         assert took < 10, f"stopped {took:.1f} s after the signal"
         shutil.rmtree(tmp_path / "numba", ignore_errors=True)  # each try compiles afresh
+
+
+def test_a_daemon_thread_still_at_work_ends_the_process_without_pythons_shutdown():
+    """After the command, a daemon thread still running (serve's warm-up compiling a kernel
+    when Ctrl+C stopped the server) ends the process at once with the command's status and
+    its output flushed: Python's shutdown, which tore the interpreter down under LLVM and
+    aborted (SIGABRT), never runs (its atexit hooks neither)."""
+    code = (
+        "import atexit, sys, threading, time\n"
+        "threading.Thread(target=time.sleep, args=(60,), daemon=True).start()\n"
+        "atexit.register(lambda: print('shutdown ran', flush=True))\n"
+        "sys.argv = ['pendulab', 'period', '-l', '1', '-a', 'pi/4']\n"
+        "from pendulab.__main__ import run\n"
+        "sys.exit(run())\n"
+    )
+    res = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, timeout=120)
+    assert res.returncode == 0, res.stderr
+    assert res.stdout.startswith("period, AGM (7)-(8)"), res.stdout
+    assert "shutdown ran" not in res.stdout
+    # Without a daemon thread at work, the shutdown runs as usual.
+    plain = code.replace("threading.Thread(target=time.sleep, args=(60,), daemon=True).start()\n", "")
+    res = subprocess.run([sys.executable, "-c", plain], capture_output=True, text=True, timeout=120)
+    assert res.returncode == 0 and "shutdown ran" in res.stdout, res.stderr

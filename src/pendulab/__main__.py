@@ -42,6 +42,18 @@ def run() -> int:
     # its CPU time), memory the system takes back at once when the process ends. Outputs
     # are written atomically and closed by then; Python flushes stdout and stderr itself.
     gc.freeze()
+    # A daemon thread may still be compiling a kernel (serve's warm-up, when Ctrl+C comes
+    # as the server starts): Python's shutdown would tear the interpreter down under LLVM,
+    # which then aborts the process (SIGABRT after the line). Nothing is left to do but
+    # flush: the process ends here, with its status.
+    threading = sys.modules.get("threading")
+    if threading is not None and any(t.daemon and t.is_alive() for t in threading.enumerate()):
+        import contextlib  # loaded by then
+
+        for stream in (sys.stdout, sys.stderr):
+            with contextlib.suppress(OSError, ValueError):  # a closed or broken pipe: nothing more to say
+                stream.flush()
+        os._exit(code)
     return code
 
 
