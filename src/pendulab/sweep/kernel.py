@@ -1,7 +1,7 @@
 """The sweep's kernels: the streamed period search for many pendulums, on every core.
 
-:func:`first_returns_serial` runs :func:`pendulab._kernels.first_return` for each pendulum
-in turn (any method). For the coursework's algorithm (3) :func:`first_returns_lanes`
+:func:`first_returns_serial` runs the period search of :func:`pendulab._kernels.first_return`
+for each pendulum in turn (any method). For the coursework's algorithm (3) :func:`first_returns_lanes`
 advances :data:`LANES` pendulums in lock-step with a polynomial sine and cosine, a loop
 LLVM compiles to vector instructions (AVX: four pendulums per instruction): about twice
 the serial kernel's rate on one core. :func:`first_returns` runs either on several
@@ -35,7 +35,6 @@ from .._kernels import (
     NO_RETURN,
     TAYLOR2,
     UNDECIDED,
-    first_return,
     kernel_code,
     piece_steps,
     return_rule,
@@ -45,23 +44,20 @@ from .._kernels import (
 
 @njit(cache=True, nogil=True)
 def first_returns_serial(method, order, alphas, cs, h, n_steps):
-    """``first_return`` for each pendulum ``(alphas[i], cs[i])`` with ``n_steps[i]`` steps, in turn.
+    """``first_return`` for each pendulum ``(alphas[i], cs[i])`` with ``n_steps[i]`` steps, in turn:
+    :func:`_serial` with every step in one call.
 
-    Releases the GIL: :func:`first_returns` runs it on several threads at once. The same
-    results, bit for bit, as :func:`pendulab.crossing.estimate_period` (the same kernel code,
+    Releases the GIL. The same results, bit for bit, as
+    :func:`pendulab.crossing.estimate_period` (the same kernel code,
     :func:`pendulab._kernels.kernel_code`).
     """
     m = len(alphas)
-    status = np.empty(m, np.int64)
-    j = np.empty(m, np.int64)
-    z1w = np.empty((m, 5))
-    z2w = np.empty((m, 5))
-    for i in range(m):
-        s, ji, w1, w2 = first_return(kernel_code(method, cs[i], h), order, alphas[i], cs[i], h, n_steps[i])
-        status[i] = s
-        j[i] = ji
-        z1w[i, :] = w1
-        z2w[i, :] = w2
+    status = np.zeros(m, np.int64)
+    j = np.zeros(m, np.int64)
+    z1w = np.zeros((m, 5))
+    z2w = np.zeros((m, 5))
+    _serial(method, order, alphas, cs, h, n_steps, status, j, z1w, z2w, np.zeros(2, np.int64),
+            np.iinfo(np.int64).max)
     return status, j, z1w, z2w
 
 
