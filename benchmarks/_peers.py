@@ -49,12 +49,13 @@ void sweep(const double *alpha, const double *c, double h, const long *n, long m
 
 
 def build_c() -> ctypes.CDLL:
-    """Compile :data:`C_SOURCE` with the system's ``cc -O2`` and load it."""
-    folder = Path(tempfile.mkdtemp(prefix="pendulab-bench-"))
-    src, lib = folder / "taylor2.c", folder / "taylor2.so"
-    src.write_text(C_SOURCE)
-    subprocess.run(["cc", "-O2", "-shared", "-fPIC", str(src), "-o", str(lib), "-lm"], check=True)
-    dll = ctypes.CDLL(str(lib))
+    """Compile :data:`C_SOURCE` with the system's ``cc -O2`` and load it. The folder goes once
+    the library is loaded (the process keeps its mapping), so no run leaves one behind."""
+    with tempfile.TemporaryDirectory(prefix="pendulab-bench-", ignore_cleanup_errors=True) as folder:
+        src, lib = Path(folder) / "taylor2.c", Path(folder) / "taylor2.so"
+        src.write_text(C_SOURCE)
+        subprocess.run(["cc", "-O2", "-shared", "-fPIC", str(src), "-o", str(lib), "-lm"], check=True)
+        dll = ctypes.CDLL(str(lib))
     dbl, pd, pl, lng = ctypes.c_double, ctypes.POINTER(ctypes.c_double), ctypes.POINTER(ctypes.c_long), ctypes.c_long
     dll.taylor2.argtypes = [dbl, dbl, dbl, lng, pd, pd]
     dll.taylor2_return.argtypes = [dbl, dbl, dbl, lng]
