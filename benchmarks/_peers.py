@@ -1,7 +1,7 @@
 """What the benchmarks share: the plain C loops (compiled here with ``cc -O2``), the timer and the table.
 
 The C loops are equations (3) exactly as the numba kernels run them: ``taylor2`` stores
-every point (as ``pendulab._kernels.trajectory``), ``taylor2_return`` streams to the first
+every point (as ``pendulab.engine.kernels.trajectory``), ``taylor2_return`` streams to the first
 sign change of ``z2`` from + to - (as ``first_return``), and ``sweep`` runs that search for
 many pendulums one after the other on one core (as a plain C program would).
 """

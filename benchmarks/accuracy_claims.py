@@ -27,10 +27,10 @@ sys.path.insert(0, str(Path(__file__).resolve().parent))
 
 import adversarial
 
-from pendulab.crossing import estimate_period
-from pendulab.lsq import EIGENVALUE_ERROR_FACTOR
-from pendulab.motion import exact_motion, exact_motion_error_bound
-from pendulab.period import (
+from pendulab.numerics.crossing import estimate_period
+from pendulab.numerics.lsq import EIGENVALUE_ERROR_FACTOR
+from pendulab.numerics.motion import exact_motion, exact_motion_error_bound
+from pendulab.numerics.period import (
     FIXED_ITERATIONS_ULPS,
     agm_mean,
     agm_period,
@@ -38,7 +38,7 @@ from pendulab.period import (
     period_digits,
     small_angle_period,
 )
-from pendulab.quadrature import quadrature_period
+from pendulab.numerics.quadrature import quadrature_period
 
 DOC = Path(__file__).resolve().parents[1] / "docs" / "accuracy.md"
 BEGIN, END = "<!-- accuracy:begin -->", "<!-- accuracy:end -->"
@@ -199,7 +199,7 @@ def claims(quick: bool = False) -> list[dict]:
                  "bound": float(FIXED_ITERATIONS_ULPS), "worst": r["worst"], "worst_text": f"{r['worst']:.0f} ulp",
                  "where": r["where"], "evaluations": r["evaluations"]})
     r = adversarial.agm_search(b["agm"])
-    rows.append({"claim": "`agm_period` correctly rounded (`pendulab._agm.ERROR_BOUND`)",
+    rows.append({"claim": "`agm_period` correctly rounded (`pendulab.engine.agm.ERROR_BOUND`)",
                  "bound_text": "double-double within `2^-72`; then rounded", "kind": "derived",
                  "bound": 1.0, "worst": r["worst"] if r["wrong"] == 0 else math.inf,
                  "worst_text": f"2^{math.log2(r['worst']) - 72:.1f}; {r['wrong']} misrounded", "where": r["where"],
@@ -212,7 +212,7 @@ def claims(quick: bool = False) -> list[dict]:
     for step, bound, text in ((0.4, EPS, "`2^-52` (`omega0` times the time error)"),
                               (1.0, 1e-10, "`1e-10` (`omega0` times the time error)")):
         r = adversarial.dense_search(b["dense"], max_step=step)
-        rows.append({"claim": f"dense output, `omega0 h <= {step:g}` (`pendulab.dense.DEGREE`)", "bound_text": text,
+        rows.append({"claim": f"dense output, `omega0 h <= {step:g}` (`pendulab.numerics.dense.DEGREE`)", "bound_text": text,
                      "kind": "measured", "bound": bound, "worst": r["worst"], "worst_text": f"{r['worst']:.1e}",
                      "where": r["where"], "evaluations": r["evaluations"]})
     r = adversarial.quadrature_search(b["quadrature"])
@@ -221,27 +221,27 @@ def claims(quick: bool = False) -> list[dict]:
                  "worst": r["worst"], "worst_text": f"{r['worst']:.1e}", "where": r["where"],
                  "evaluations": r["evaluations"]})
     r = adversarial.sincos_search(b["sincos"])
-    rows.append({"claim": "the sweep kernel's `sincos`, `abs(x) < 4` (`pendulab.sweep.kernel`)",
+    rows.append({"claim": "the sweep kernel's `sincos`, `abs(x) < 4` (`pendulab.engine.lanes`)",
                  "bound_text": "1 ulp", "kind": "measured (fdlibm's polynomials: 2^-58)", "bound": 1.0,
                  "worst": r["worst"], "worst_text": f"{r['worst']:.2f} ulp", "where": r["where"],
                  "evaluations": r["evaluations"]})
     for top, bound in ((179.9, 1e-9), (179.99, 2e-7)):
         r = adversarial.sweep_search(b["sweep"], top_degrees=top)
-        rows.append({"claim": f"the sweep's (3) against `estimate_period`, up to {top:g} degrees (`pendulab.sweep.kernel`)",
+        rows.append({"claim": f"the sweep's (3) against `estimate_period`, up to {top:g} degrees (`pendulab.engine.lanes`)",
                      "bound_text": f"`{bound:g}` relative", "kind": "measured", "bound": bound, "worst": r["worst"],
                      "worst_text": f"{r['worst']:.1e}", "where": r["where"], "evaluations": r["evaluations"]})
     r = adversarial.sweep_search(b["sweep"], top_degrees=179.999)
-    rows.append({"claim": "the sweep's (3) against `estimate_period`, up to 179.999 degrees (`pendulab.sweep.kernel`)",
+    rows.append({"claim": "the sweep's (3) against `estimate_period`, up to 179.999 degrees (`pendulab.engine.lanes`)",
                  "bound_text": "5 % of the scalar estimate's own error", "kind": "measured", "bound": 5e-2,
                  "worst": r["worst_share"], "worst_text": f"{r['worst_share']:.1e}", "where": r["where_share"],
                  "evaluations": r["evaluations"]})
     r = adversarial.eigenvalue_search(b["eigenvalues"])
-    rows.append({"claim": "eigenvalues of the normal matrix (`pendulab.lsq.EIGENVALUE_ERROR_FACTOR`)",
+    rows.append({"claim": "eigenvalues of the normal matrix (`pendulab.numerics.lsq.EIGENVALUE_ERROR_FACTOR`)",
                  "bound_text": f"`{EIGENVALUE_ERROR_FACTOR} n u norm(A, 2)`", "kind": "measured (LAPACK: `p(n) u norm(A, 2)`)",
                  "bound": 1.0, "worst": r["worst"], "worst_text": f"{r['worst']:.2f} of the bound", "where": r["where"],
                  "evaluations": r["evaluations"]})
     r = adversarial.quarter_period_search(b["quarter_period"])
-    rows.append({"claim": "`K(k)` of the motion (`pendulab.motion.quarter_period`)",
+    rows.append({"claim": "`K(k)` of the motion (`pendulab.numerics.motion.quarter_period`)",
                  "bound_text": "`2 eps` relative", "kind": "measured", "bound": 2.0, "worst": r["worst"],
                  "worst_text": f"{r['worst']:.2f} eps", "where": r["where"], "evaluations": r["evaluations"]})
     return rows

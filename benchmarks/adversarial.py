@@ -87,7 +87,7 @@ def motion_reference(length: float, alpha: float, g: float, t: float, dps: int =
 
 def motion_ratio(x: tuple[float, float, float, float]) -> float:
     """The larger of ``|theta error| / bound`` and ``|theta' error| / bound'`` at ``x = (l, g, alpha, t)``."""
-    from pendulab.motion import exact_motion, exact_motion_error_bound
+    from pendulab.numerics.motion import exact_motion, exact_motion_error_bound
 
     length, g, alpha, t = x
     ex = exact_motion(length, alpha, [t], g)
@@ -100,7 +100,7 @@ def motion_starts(rng: random.Random, n: int) -> list[tuple[float, float, float,
     """Where the error sources line up: amplitudes near pi and 0, times at zero crossings
     (a quarter and three quarters of a period, where ``|d theta/du| = 2k`` is largest) and
     turning points, after up to 10^10 periods (a fifth before 0), lengths and g over decades."""
-    from pendulab.period import agm_period
+    from pendulab.numerics.period import agm_period
 
     near_pi = [math.pi - 10.0**-e for e in range(1, 16)] + [math.nextafter(math.pi, 0)]
     starts = [(7.456720155578, 30.186002204269425, 3.1409621881538863, 188157.06928849473)]  # a known hard case
@@ -160,7 +160,7 @@ def correctly_rounded_periods(length: float, alphas: np.ndarray, g: float = G) -
 def t_hat_ulps(length: float, alphas: np.ndarray, g: float = G) -> np.ndarray:
     """``|T^ - T|`` in ulps of ``T``: ``T^`` the coursework's 7 iterations (array kernel and
     scalar loop, the larger), ``T`` correctly rounded."""
-    from pendulab.period import agm_period
+    from pendulab.numerics.period import agm_period
 
     alphas = np.asarray(alphas, dtype=float)
     ref = correctly_rounded_periods(length, alphas, g)
@@ -180,7 +180,7 @@ def t_hat_search(budget: int = 200_000, seed: int = 1) -> dict:
     period) over ``budget`` pendulums; the worst 20 and their neighbouring doubles
     (``alpha`` within 64 ulps) are then measured against mpmath's elliptic K, scalar loop included.
     """
-    from pendulab.period import agm_period, fixed_iterations_limit
+    from pendulab.numerics.period import agm_period, fixed_iterations_limit
 
     rng = np.random.default_rng(seed)
     limit = fixed_iterations_limit()
@@ -268,7 +268,7 @@ def digits_search(budget: int = 5000, seed: int = 1) -> dict:
     """``significant_digits`` against :func:`digits_rule` on :func:`digit_probes`; ``round_significant``
     never in E-notation for a leading digit in ``10^-7 .. 10^20`` and equal, as a number,
     to the exact value rounded half away from zero."""
-    from pendulab.uncertainty import round_significant, significant_digits
+    from pendulab.numerics.uncertainty import round_significant, significant_digits
 
     rng = random.Random(seed)
     wrong, text_wrong, first = 0, 0, None
@@ -309,13 +309,13 @@ def turning_time(z1: float, z2: float, c: float, forward: bool) -> mpmath.mpf:
 
 
 def dense_search(budget: int = 40, seed: int = 1, max_step: float = 1.0) -> dict:
-    """The truncation of the series of :mod:`pendulab.dense` (degree :data:`~pendulab.dense.DEGREE`):
-    :func:`~pendulab.dense.dense_crossing` against the exact flow through the same bracket
+    """The truncation of the series of :mod:`pendulab.numerics.dense` (degree :data:`~pendulab.numerics.dense.DEGREE`):
+    :func:`~pendulab.numerics.dense.dense_crossing` against the exact flow through the same bracket
     point (:func:`turning_time`), as ``omega0`` times the time error, over ``omega0 h`` up to 1,
     amplitudes from 0.1 to ``pi - 1e-8`` and where in the step the crossing falls (a point
     just before it, or half a step either side, the farthest the series is used).
     ``max_step``: the largest ``omega0 h`` tried (a third of the tries take it)."""
-    from pendulab.dense import dense_crossing
+    from pendulab.numerics.dense import dense_crossing
 
     def error(x) -> float:
         alpha, wh, frac = x
@@ -354,7 +354,7 @@ def agm_half(alpha: float) -> float:
 def quadrature_error(alpha: float, n: int = 3000) -> float:
     """Relative error of ``quadrature_period(1, alpha, n, substitution=True, graded=True)``
     against the correctly rounded period (mpmath's elliptic K)."""
-    from pendulab.quadrature import quadrature_period
+    from pendulab.numerics.quadrature import quadrature_period
 
     ref = correctly_rounded_periods(1.0, np.array([alpha]))[0]
     return abs(quadrature_period(1.0, alpha, n, substitution=True, graded=True) / ref - 1)
@@ -380,12 +380,12 @@ def quadrature_search(budget: int = 300, seed: int = 1) -> dict:
 
 # ---------------------------------------------------------------------------- correctly rounded AGM
 def agm_search(budget: int = 2000, seed: int = 1) -> dict:
-    """The double-double kernel's relative error against :data:`pendulab._agm.ERROR_BOUND`, and
+    """The double-double kernel's relative error against :data:`pendulab.engine.agm.ERROR_BOUND`, and
     how many periods ``agm_period`` misrounds: amplitudes within 1e-16 .. 1 of pi, the 8
     doubles below pi, tiny ones (1e-300 .. 1e-8) and uniform ones; lengths putting ``T``
     just below a power of two, and random. Reference: mpmath's elliptic K rounded once."""
-    from pendulab._agm import ERROR_BOUND, agm_periods_dd
-    from pendulab.period import agm_period
+    from pendulab.engine.agm import ERROR_BOUND, agm_periods_dd
+    from pendulab.numerics.period import agm_period
 
     rng = np.random.default_rng(seed)
     below = [math.pi]
@@ -420,13 +420,13 @@ def agm_search(budget: int = 2000, seed: int = 1) -> dict:
 
 # ---------------------------------------------------------------------------- the sweep's sine and cosine
 def sincos_search(budget: int = 20_000, seed: int = 1) -> dict:
-    """``pendulab.sweep.kernel.sincos`` against mpmath (correctly rounded sin and cos of the
+    """``pendulab.engine.lanes.sincos`` against mpmath (correctly rounded sin and cos of the
     exact double), in ulps of the result: ``x`` next to the multiples of ``pi/4`` in
     ``|x| < 4`` (zeros of sin and cos, where the reduction cancels; the quadrant boundaries,
     where ``q`` rounds at a tie), within a few ulps and within 1e-12 .. 1e-3, and uniform."""
     from mpmath.libmp import to_float
 
-    from pendulab.sweep.kernel import sincos
+    from pendulab.engine.lanes import sincos
 
     rng = random.Random(seed)
     worst, where = 0.0, None
@@ -461,8 +461,8 @@ def sweep_differences(alphas, lengths, h: float) -> tuple[np.ndarray, np.ndarray
     """For (3) with step ``h``: the sweep's lock-step estimates against ``estimate_period``'s
     (the scalar kernel), the larger of the linear and cubic ones: the relative difference,
     and the difference over the scalar estimate's own error (NaN where either finds no period)."""
-    from pendulab.crossing import estimate_period
-    from pendulab.sweep import sweep
+    from pendulab.jobs.sweep import sweep
+    from pendulab.numerics.crossing import estimate_period
 
     r = sweep(np.asarray(alphas, dtype=float), [h], ["taylor2"], np.asarray(lengths, dtype=float))
     rel, share = np.full(len(alphas), np.nan), np.full(len(alphas), np.nan)
@@ -514,7 +514,7 @@ def sweep_search(budget: int = 400, seed: int = 1, top_degrees: float = 179.99) 
 def eigenvalue_ratio(a: np.ndarray) -> float:
     """``max |lambda~ - lambda| / eigenvalue_error`` for ``definiteness(a)``: numpy's ``eigvalsh``
     against mpmath's ``eigsy`` at 60 digits on the exact entries of ``a``."""
-    from pendulab.lsq import definiteness
+    from pendulab.numerics.lsq import definiteness
 
     d = definiteness(a)
     with mpmath.workdps(60):
@@ -523,11 +523,11 @@ def eigenvalue_ratio(a: np.ndarray) -> float:
 
 
 def eigenvalue_search(budget: int = 200, seed: int = 1) -> dict:
-    """:attr:`pendulab.lsq.Definiteness.eigenvalue_error` (``c n u ||A||_2``) against the computed
+    """:attr:`pendulab.numerics.lsq.Definiteness.eigenvalue_error` (``c n u ||A||_2``) against the computed
     eigenvalues' error: the normal matrices of basis (10) on time grids (4 to 400 points,
     short and long spans, where the columns are nearly dependent) and symmetric matrices
     with eigenvalues spread over 1 .. 1e-16, clustered or of mixed sign."""
-    from pendulab.lsq import TRIG_BASIS, design_matrix
+    from pendulab.numerics.lsq import TRIG_BASIS, design_matrix
 
     rng = np.random.default_rng(seed)
     worst, where = 0.0, None
@@ -558,7 +558,7 @@ def eigenvalue_search(budget: int = 200, seed: int = 1) -> dict:
 def quarter_period_error(alpha: float) -> float:
     """Relative error of ``quarter_period(alpha)``, in ``eps``, against mpmath's elliptic K of the
     exact double (``m`` held to 40 digits beyond ``1 - m``)."""
-    from pendulab.motion import quarter_period
+    from pendulab.numerics.motion import quarter_period
 
     gap = max(math.pi - alpha, 1e-17)
     with mpmath.workdps(40 + int(-2 * math.log10(gap)) if gap < 1 else 40):

@@ -18,8 +18,8 @@ import sys
 import mpmath
 import numpy as np
 
-from pendulab._agm import ERROR_BOUND, agm_periods_dd
-from pendulab.period import agm_mean, agm_period, small_angle_period
+from pendulab.engine.agm import ERROR_BOUND, agm_periods_dd
+from pendulab.numerics.period import agm_mean, agm_period, small_angle_period
 
 G = 9.80665
 

@@ -27,7 +27,8 @@ import numpy as np
 from _peers import load_against, side_by_side
 
 import pendulab
-from pendulab import approximations, coursework, period
+from pendulab.jobs import coursework
+from pendulab.numerics import approximations, period
 
 G = 9.80665
 
@@ -84,7 +85,7 @@ def agm_rows(repeat: int = 25, against: str | None = None) -> list[dict]:
         other = load_against(against)
         from importlib import import_module
 
-        theirs = calls(other, import_module("pendulab_against.period"), import_module("pendulab_against.approximations"))
+        theirs = calls(other, import_module("pendulab_against.numerics.period"), import_module("pendulab_against.numerics.approximations"))
         fns.update({f"old_{k}": f for k, f in theirs.items()})
         INNER.update({f"old_{k}": INNER[k] for k in ("scalar", "scalar_mean")})
     t = timed(fns, repeat, INNER)

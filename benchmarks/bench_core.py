@@ -26,8 +26,8 @@ import mpmath
 import numpy as np
 from _peers import build_c, ptr, side_by_side
 
-from pendulab._kernels import TAYLOR2, TAYLOR2_FAST, drive, first_return, kernel_code
-from pendulab.period import agm_period
+from pendulab.engine.kernels import TAYLOR2, TAYLOR2_FAST, drive, first_return, kernel_code
+from pendulab.numerics.period import agm_period
 
 G = 9.80665
 
@@ -45,7 +45,7 @@ def taylor_rows(dll, repeat: int = 5) -> list[dict]:
     alpha, c, h = 4 * math.pi / 5, -G / 2.0800838231, 1e-6
     n = 5_000_000
     z1, z2, c1, c2 = (np.empty(n + 1) for _ in range(4))
-    code = kernel_code(TAYLOR2, c, h)  # the code pendulab.taylor.simulate and the period search run here
+    code = kernel_code(TAYLOR2, c, h)  # the code pendulab.numerics.simulation.simulate and the period search run here
     assert code == TAYLOR2_FAST
     z1[0], z2[0] = alpha, 0.0
     drive(code, 2, alpha, 0.0, c, h, 0, n, 1, n, z1[1:], z2[1:])

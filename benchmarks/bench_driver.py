@@ -4,14 +4,14 @@ Side by side in one run (best of ``REPEAT`` rounds, taking turns, of the thread'
 the kernels run on one thread, and other work on a shared machine takes the core away from
 either at random), on the example group's pendulum (l = 2.0800838231 m, alpha = 4 pi/5):
 
-- :func:`pendulab._kernels.drive` (every step; one in 1000 kept; the explorer's CSV blocks
+- :func:`pendulab.engine.kernels.drive` (every step; one in 1000 kept; the explorer's CSV blocks
   from a carried state) against separate loops compiled here as they would be written
   without it: a plain loop, a thinning loop, the web's ``advance`` with its ``i % stride``
-  per step. These loops step through ``four_branches``, :func:`pendulab._kernels.step`
-  without its :data:`~pendulab._kernels.TAYLOR2_FAST` branch, so the rows also show what
+  per step. These loops step through ``four_branches``, :func:`pendulab.engine.kernels.step`
+  without its :data:`~pendulab.engine.kernels.TAYLOR2_FAST` branch, so the rows also show what
   that branch costs the other codes (rk4 and verlet too);
 - the literal step of (3) (the C library's sin and cos, code ``TAYLOR2``) against the
-  certified table step (``TAYLOR2_FAST``, the code :func:`pendulab._kernels.kernel_code`
+  certified table step (``TAYLOR2_FAST``, the code :func:`pendulab.engine.kernels.kernel_code`
   chooses for fine steps) at h = 1e-6: (i) a trajectory of 10^6 steps through ``drive``,
   (ii) the whole period search (``first_return``, 4.79 * 10^6 steps); and the trajectory
   at h = 1e-4 (where about 5 steps in 100 fall back) and
@@ -31,7 +31,7 @@ import numpy as np
 from _peers import side_by_side
 from numba import njit
 
-from pendulab._kernels import (
+from pendulab.engine.kernels import (
     RK4,
     TAYLOR2,
     TAYLOR2_FAST,
@@ -53,7 +53,7 @@ REPEAT = 3 if "--quick" in sys.argv else 15
 # ------------------------------------------------------------------ the loops the driver replaces
 @njit(cache=True, nogil=True, inline="always")
 def four_branches(method, order, z1, z2, h, c):
-    """``pendulab._kernels.step`` with the integrators' branches only (no fast step)."""
+    """``pendulab.engine.kernels.step`` with the integrators' branches only (no fast step)."""
     if method == TAYLOR2:
         return taylor2_step(z1, z2, h, c)
     if method == RK4:

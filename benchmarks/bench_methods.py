@@ -17,8 +17,8 @@ import argparse
 import math
 import time
 
-from pendulab.crossing import estimate_period
-from pendulab.period import period_mp
+from pendulab.numerics.crossing import estimate_period
+from pendulab.numerics.period import period_mp
 
 LENGTH, ALPHA, G = 2.0800838231, 4 * math.pi / 5, 9.80665
 EXACT = float(period_mp(LENGTH, ALPHA, dps=30))

@@ -61,7 +61,7 @@ def breakdown() -> dict[str, float]:
     import matplotlib.figure  # noqa: F401
     import typst  # noqa: F401
 
-    from pendulab import coursework, problems  # noqa: F401  the engine's sections
+    from pendulab.jobs import coursework, problems  # noqa: F401  the engine's sections
     from pendulab.report import builder, figures, sections
 
     coursework.load()  # the programs: numpy, scipy.linalg, mpmath

@@ -2,7 +2,7 @@
 
 1000 pendulums, amplitudes 1..179 degrees, l = 1, h = 1e-4 (default), taylor2, each run to
 its first return. Peer: the same search in C (``cc -O2``, compiled now) running the
-pendulums one after the other on one core. Ours: ``pendulab.sweep.first_returns`` (the
+pendulums one after the other on one core. Ours: ``pendulab.jobs.sweep.first_returns`` (the
 lock-step kernel, 16 pendulums at a time in vector instructions, on numba's threads over
 blocks of pendulums), the same on one thread, and the scalar kernel (the one
 ``estimate_period`` runs) on one thread. Steps counted are those the scalar kernel took
@@ -25,10 +25,10 @@ import numpy as np
 from _peers import build_c, load_against, ptr, side_by_side
 from numba import get_num_threads
 
-from pendulab.crossing import default_t_max
-from pendulab.period import agm_period
-from pendulab.sweep import first_returns, first_returns_serial
-from pendulab.taylor import step_count
+from pendulab.jobs.sweep import first_returns, first_returns_serial
+from pendulab.numerics.crossing import default_t_max
+from pendulab.numerics.period import agm_period
+from pendulab.numerics.simulation import step_count
 
 G = 9.80665
 
@@ -52,7 +52,7 @@ def sweep_rows(dll, h: float = 1e-4, repeat: int = 3, against: str | None = None
         from importlib import import_module
 
         load_against(against)
-        other = import_module("pendulab_against.sweep")
+        other = import_module("pendulab_against.jobs.sweep")
         for theirs, mine in zip(other.first_returns(0, 2, alphas, cs, h, n, threads=1),
                                 first_returns(0, 2, alphas, cs, h, n, threads=1), strict=True):
             assert np.array_equal(mine, theirs), "the two trees' lanes disagree"

@@ -5,7 +5,7 @@ default duration): 200 000 Taylor steps stored and thinned to 2000 points, plus 
 period search streamed over 1.5 T / h = 93 000 steps. Side by side, as ratios to the
 library's own work (the floor the web layer cannot go below):
 
-1. library   ``taylor.simulate`` + ``crossing.estimate_period`` + ``period.agm_period``
+1. library   ``simulation.simulate`` + ``crossing.estimate_period`` + ``period.agm_period``
 2. presenter ``web.views.simulate_view`` + the JSON encoding of the response, in process:
              one streamed pass keeping each column's min/max of theta and of the energy,
              the phase and animation samples, the exact motion and the global error
@@ -15,7 +15,7 @@ The aim is under 50 ms for (3). Run: ``.venv/bin/python benchmarks/bench_web.py`
 (about 30 s). The load benchmark (200 heavy requests at once) is
 ``benchmarks/bench_web_load.py``.
 
-First, the streamed pass alone (``--pass``: only this): :func:`pendulab.web.stream.run`
+First, the streamed pass alone (``--pass``: only this): :func:`pendulab.engine.fold.run`
 (the library's driver into a buffer, folded by a compiled reduction) against the fused loop
 it replaces (``fused_scan`` below: the step and the reduction in one loop), on the example
 group's pendulum (l = 2.0800838231 m, alpha = 4 pi/5, t_max = 20 s, 1000 columns and the
@@ -38,13 +38,14 @@ import numpy as np
 from _peers import print_table, side_by_side
 from numba import njit
 
-from pendulab._interrupt import CHUNK_COST, pieces, run_pieces
-from pendulab._kernels import TAYLOR2_FAST, kernel_code, step
-from pendulab.crossing import estimate_period
-from pendulab.methods import cost_per_step
-from pendulab.period import agm_period
-from pendulab.taylor import method_code, simulate, step_count
-from pendulab.web import sampling, stream, views
+from pendulab.core.interrupt import CHUNK_COST, pieces, run_pieces
+from pendulab.core.methods import cost_per_step
+from pendulab.engine import fold
+from pendulab.engine.kernels import TAYLOR2_FAST, kernel_code, step
+from pendulab.numerics.crossing import estimate_period
+from pendulab.numerics.period import agm_period
+from pendulab.numerics.simulation import method_code, simulate, step_count
+from pendulab.web import sampling, views
 from pendulab.web.app import _encode
 from pendulab.web.child import serve_in_child
 
@@ -149,12 +150,12 @@ def pass_rows() -> list[dict]:
                              sampling.frame_samples(n, per, 64, sampling.ERROR_POINTS))
         chosen = kernel_code(code, c, h)
         assert chosen == TAYLOR2_FAST
-        new = functools.partial(stream.run, code, order, alpha, 0.0, c, h, n, nb, samples, size)
+        new = functools.partial(fold.run, code, order, alpha, 0.0, c, h, n, nb, samples, size)
         old = functools.partial(fused_pass, chosen, order, alpha, c, h, n, nb, samples, size)
 
         def literal(h=h, n=n, samples=samples):
-            with mock.patch.object(stream, "kernel_code", lambda method, c, h: method):
-                return stream.run(code, order, alpha, 0.0, c, h, n, nb, samples, size)
+            with mock.patch.object(fold, "kernel_code", lambda method, c, h: method):
+                return fold.run(code, order, alpha, 0.0, c, h, n, nb, samples, size)
 
         r, (value, steps, s_th, s_om, flags) = new(), old()
         q = literal()
@@ -162,7 +163,7 @@ def pass_rows() -> list[dict]:
                    for k in ("value", "step", "s_theta", "s_omega", "where")), "the literal step keeps other values"
         same = (np.array_equal(r.value.view(np.int64), value.view(np.int64)) and np.array_equal(r.step, steps)
                 and np.array_equal(r.s_theta, s_th) and np.array_equal(r.s_omega, s_om)
-                and np.array_equal(r.where[stream.LEFT:], flags))
+                and np.array_equal(r.where[fold.LEFT:], flags))
         assert same, "the two passes keep different values"
         # The thread's CPU time: the kernels run on one thread, and other work on a shared
         # machine takes the core away from either at random (wall times vary twofold).

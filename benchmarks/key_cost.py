@@ -1,6 +1,6 @@
 """What one group costs the answer key: seconds of work and bytes of each output format.
 
-The cap :data:`pendulab.key.MAX_GROUPS` rests on these numbers. Groups of three student
+The cap :data:`pendulab.jobs.key.MAX_GROUPS` rests on these numbers. Groups of three student
 numbers (a class's usual size), the common answers computed once beforehand (they do not
 grow with the class); ``N`` groups timed (CPU time of this process, best of 3), then
 rendered as CSV, JSON and PDF. Printed: per group, and for MAX_GROUPS groups.
@@ -12,7 +12,7 @@ from __future__ import annotations
 import argparse
 import time
 
-from pendulab import key
+from pendulab.jobs import key
 from pendulab.report.key import render
 
 

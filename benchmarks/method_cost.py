@@ -1,8 +1,8 @@
 """The cost of one step of each integrator, relative to the coursework's algorithm (3).
 
-What the limits weigh: :func:`pendulab.methods.cost_per_step` (used by the CLI's
+What the limits weigh: :func:`pendulab.core.methods.cost_per_step` (used by the CLI's
 ``estimate --step`` list, the sweep's cap and the web's) holds the ratios this script
-measures. Each method runs the period search's kernel (``_kernels.first_return``, the
+measures. Each method runs the period search's kernel (``kernels.first_return``, the
 loop ``estimate`` and ``sweep`` run) for ``STEPS`` steps of a pendulum that does not
 return within them (``c = -1e-6``, period about 6300 s, ``h = 1e-3``); best of
 ``REPEAT`` rounds of CPU time, all methods in each round, side by side. The taylor:P row is fitted by
@@ -18,8 +18,8 @@ import time
 
 import numpy as np
 
-from pendulab import methods
-from pendulab._kernels import first_return
+from pendulab.core import methods
+from pendulab.engine.kernels import first_return
 
 ALPHA, C, H = 0.5, -1e-6, 1e-3
 REPEAT = 7

@@ -1,7 +1,7 @@
 """Where more panels stop paying: the composite 3-point Gauss rule's relative error against
 mpmath (``4 sqrt(l/g) K(sin^2(alpha/2))`` at 40 digits) and its time, n = 10^0 .. 10^KMAX,
 for problem 5's pendulum (4pi/5) and near pi, plain and substituted. The measurement behind
-``pendulab.quadrature.MAX_N``.
+``pendulab.numerics.quadrature.MAX_N``.
 
 Run: ``.venv/bin/python benchmarks/quadrature_cap.py [KMAX]`` (KMAX = 7: about a minute).
 """
@@ -13,7 +13,7 @@ import time
 
 import mpmath
 
-from pendulab.quadrature import quadrature_period
+from pendulab.numerics.quadrature import quadrature_period
 
 L, G = 3.5, 9.80665
 CASES = [("4pi/5 plain", 4 * math.pi / 5, False), ("4pi/5 subst", 4 * math.pi / 5, True),

@@ -6,7 +6,7 @@ of reach. This module gives test_report.py and test_key.py their answers by name
 """
 from __future__ import annotations
 
-from pendulab.coursework import load
+from pendulab.jobs.coursework import load
 
 _P = load()
 length, agm, taylor, problem3 = (_P[f"{n}.py"] for n in ("length", "agm", "taylor", "problem3"))

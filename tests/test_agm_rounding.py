@@ -11,8 +11,17 @@ import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
-from pendulab._agm import COS_HI, COS_LO, ERROR_BOUND, N_TABLE, SIN_HI, SIN_LO, agm_periods_dd, half_angle_cos
-from pendulab.period import agm_period, nearest_period
+from pendulab.engine.agm import (
+    COS_HI,
+    COS_LO,
+    ERROR_BOUND,
+    N_TABLE,
+    SIN_HI,
+    SIN_LO,
+    agm_periods_dd,
+    half_angle_cos,
+)
+from pendulab.numerics.period import agm_period, nearest_period
 from reference import G, reference_period
 
 
@@ -123,7 +132,7 @@ def test_any_pendulum_is_correctly_rounded(alpha, length):
 
 def test_errors_of_the_double_loop_are_gone():
     # The plain double-precision AGM is off by an ulp or more somewhere in these 2000.
-    from pendulab.period import agm_mean, small_angle_period
+    from pendulab.numerics.period import agm_mean, small_angle_period
 
     plain = [small_angle_period(length) / agm_mean(math.cos(a / 2)) for length, a in zip(RANDOM_LENGTH, RANDOM_ALPHA)]
     assert not np.array_equal(plain, agm_period(RANDOM_LENGTH, RANDOM_ALPHA))

@@ -6,9 +6,9 @@ import mpmath
 import numpy as np
 import pytest
 
-from pendulab.approximations import FORMULAS, approximate_period, approximation_errors
 from pendulab.cli import main
-from pendulab.errors import InputError
+from pendulab.core.errors import InputError
+from pendulab.numerics.approximations import FORMULAS, approximate_period, approximation_errors
 from reference import G
 
 # Each formula's T/T0 written again in mpmath, straight from the cited papers.

@@ -72,7 +72,7 @@ def sandbox(tmp_path_factory):
 
     import uvicorn
 
-    import pendulab.key
+    import pendulab.jobs.key
     import pendulab.report
     import pendulab.report.key
     import pendulab.web.server
@@ -80,7 +80,7 @@ def sandbox(tmp_path_factory):
     (folder / "groups.txt").write_text("262 407 634\n", encoding="utf-8")
     with pytest.MonkeyPatch.context() as mp, contextlib.chdir(folder):
         mp.setattr(pendulab.report, "build_report", lambda *a, **k: None)
-        mp.setattr(pendulab.key, "answer_key", lambda *a, **k: None)
+        mp.setattr(pendulab.jobs.key, "answer_key", lambda *a, **k: None)
         mp.setattr(pendulab.report.key, "write_key", lambda *a, **k: None)
         mp.setattr(uvicorn, "run", lambda *a, **k: None)
         mp.setattr(pendulab.web.server, "run", lambda *a, **k: None)  # serve's own runner
@@ -121,9 +121,9 @@ HEAD = re.compile(r"pendulab \S+: error: (\S+) = (.*?) is not allowed: must be "
 
 def as_typed(echo: str, typed: str) -> bool:
     """Whether ``echo`` shows ``typed`` (or one of its list items) as typed: verbatim,
-    or quoted by :func:`pendulab.inputs.shown` where unprintable or long, never a repr of
+    or quoted by :func:`pendulab.core.inputs.shown` where unprintable or long, never a repr of
     printable text or a float's rendering (``1e9`` shown as ``1000000000``)."""
-    from pendulab import inputs
+    from pendulab.core import inputs
 
     items = re.split(r"\s*,\s*|\s+", typed.strip())
     candidates = [typed, *items, *(part for item in items for part in item.split(":"))]

@@ -22,9 +22,9 @@ sys.path.insert(0, str(ROOT / "benchmarks"))
 import accuracy_claims  # noqa: E402
 import adversarial  # noqa: E402
 
-from pendulab.motion import exact_motion, exact_motion_error_bound  # noqa: E402
-from pendulab.period import FIXED_ITERATIONS_ULPS, fixed_iterations_limit  # noqa: E402
-from pendulab.uncertainty import gravity_estimate, round_significant, significant_digits  # noqa: E402
+from pendulab.numerics.motion import exact_motion, exact_motion_error_bound  # noqa: E402
+from pendulab.numerics.period import FIXED_ITERATIONS_ULPS, fixed_iterations_limit  # noqa: E402
+from pendulab.numerics.uncertainty import gravity_estimate, round_significant, significant_digits  # noqa: E402
 
 EPS = 2.0**-52
 
@@ -58,7 +58,7 @@ def test_motion_hard_case_is_a_few_ulps():
 @pytest.mark.parametrize("periods", [1e6 + 0.25, 1e9 + 0.75, 2.0**62 + 0.25])
 def test_motion_within_bound_after_many_periods(periods):
     """Zero crossings after up to 2^62 periods (the last beyond TwoProduct's range: rationals)."""
-    from pendulab.period import agm_period
+    from pendulab.numerics.period import agm_period
 
     length, alpha = 0.75, math.pi - 1e-9
     t = periods * float(agm_period(length, alpha))
@@ -82,7 +82,7 @@ def test_t_hat_hard_case_within_the_derived_bound():
 
 
 def test_t_hat_beyond_the_limit_exceeds_the_bound_and_problem5_says_so():
-    from pendulab.problems import problem5
+    from pendulab.jobs.problems import problem5
 
     last = math.nextafter(math.pi, 0)
     assert last > fixed_iterations_limit()
@@ -103,7 +103,7 @@ def test_significant_digits_just_below_a_power_of_ten():
 
 @pytest.mark.parametrize("value, error", [(99.99999999999999, 0.4), (9.8, 0.05), (98.0, 0.5), (0.009999999999999998, 4e-4)])
 def test_the_coursework_program_counts_digits_by_the_same_rule(value, error):
-    from pendulab import coursework
+    from pendulab.jobs import coursework
 
     program = coursework.load()["problem1.py"]
     assert program.significant_digits(value, error) == significant_digits(value, error) == adversarial.digits_rule(value, error)

@@ -8,7 +8,7 @@ import mpmath
 import pytest
 
 from conftest import assert_one_line_error
-from pendulab.period import agm_period
+from pendulab.numerics.period import agm_period
 from reference import G_TEXT, G, ellipk_period, reference_period, reference_period_kp
 
 L3 = 2.0800838231

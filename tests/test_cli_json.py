@@ -12,16 +12,16 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from pendulab import problems
-from pendulab.approximations import approximation_table
-from pendulab.crossing import estimate_periods
-from pendulab.group import group_length
-from pendulab.inputs import angle_range
-from pendulab.key import answer_key, read_entries
-from pendulab.period import FIXED_ITERATIONS_ULPS, periods
+from pendulab.core.inputs import angle_range
+from pendulab.jobs import problems
+from pendulab.jobs.key import answer_key, read_entries
+from pendulab.numerics.approximations import approximation_table
+from pendulab.numerics.crossing import estimate_periods
+from pendulab.numerics.group import group_length
+from pendulab.numerics.period import FIXED_ITERATIONS_ULPS, periods
+from pendulab.numerics.simulation import simulate
 from pendulab.report.key import document
-from pendulab.taylor import simulate
-from pendulab.words import sentence
+from pendulab.report.words import sentence
 
 
 def plain(x):
@@ -137,7 +137,7 @@ def test_key(cli, tmp_path):
 def test_sweep(cli, tmp_path, files):
     """The sweep's JSON is the result's ``to_dict()`` (``g`` and the summary per method and
     step) and the files the command wrote (``output``, ``plot``: null where none)."""
-    from pendulab.sweep import sweep
+    from pendulab.jobs.sweep import sweep
 
     written = {"output": str(tmp_path / "rows.csv"), "plot": str(tmp_path / "errors.png")} if files else {}
     args = [a for k, path in written.items() for a in (f"--{k}", path)]
@@ -161,7 +161,7 @@ def test_report(cli, tmp_path, monkeypatch):
     key's document for the group, names and all. The PDF itself is test_report.py's: here the
     builder writes a stand-in, so the test reads the record the command prints about it."""
     import pendulab.report
-    from pendulab.key import Entry
+    from pendulab.jobs.key import Entry
 
     def build(numbers, lang, output, progress, names):
         Path(output).write_bytes(b"%PDF-1.7 stand-in")

@@ -6,8 +6,8 @@ import sys
 import pytest
 
 from conftest import assert_one_line_error
-from pendulab.period import FIXED_ITERATIONS_ULPS, agm_period
-from pendulab.problems import problem1, problem2
+from pendulab.jobs.problems import problem1, problem2
+from pendulab.numerics.period import FIXED_ITERATIONS_ULPS, agm_period
 from reference import G, reference_period, reference_period_kp
 
 

@@ -7,11 +7,11 @@ import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
-from pendulab.crossing import estimate_period, observed_orders, search_period
-from pendulab.errors import InputError, LeftOscillationError, NoReturnError
-from pendulab.methods import Status
-from pendulab.period import agm_period
-from pendulab.taylor import simulate
+from pendulab.core.errors import InputError, LeftOscillationError, NoReturnError
+from pendulab.core.methods import Status
+from pendulab.numerics.crossing import estimate_period, observed_orders, search_period
+from pendulab.numerics.period import agm_period
+from pendulab.numerics.simulation import simulate
 from reference import G, taylor2_plain
 
 L3 = 2.0800838231  # problem 3(b), the spec's example group
@@ -126,7 +126,7 @@ def test_amplitude_1e_160_is_estimated():
 
 
 def test_sweep_finds_tiny_amplitudes_with_finite_errors():
-    from pendulab.sweep import sweep
+    from pendulab.jobs.sweep import sweep
 
     r = sweep(np.array([1e-200, 1e-160, 1e-3]), [1e-3])
     assert list(r["status"]) == ["found"] * 3
@@ -144,7 +144,7 @@ def test_subnormal_amplitude_says_why_not_t_max():
 def test_dense_estimate_reaches_the_method_order():
     import mpmath
 
-    from pendulab.period import period_mp
+    from pendulab.numerics.period import period_mp
 
     exact = float(period_mp(2.0800838231, 4 * math.pi / 5, dps=30))  # the double 4pi/5, mpmath AGM
     # taylor:8: the cubic stops at O(h^4), the dense estimate keeps going (slope ~8).
@@ -166,7 +166,7 @@ def test_dense_estimate_reaches_the_method_order():
 def test_flow_series_is_the_solution_of_the_ode():
     import mpmath
 
-    from pendulab.dense import flow_series, series_zero
+    from pendulab.numerics.dense import flow_series, series_zero
 
     c, z1, z2 = -G / 2.0800838231, 2.4, 0.3
     x = flow_series(z1, z2, c)
@@ -184,7 +184,7 @@ def test_flow_series_is_the_solution_of_the_ode():
 
 
 def test_sweep_and_estimate_agree_where_theta_prime_underflows():
-    from pendulab.sweep import sweep
+    from pendulab.jobs.sweep import sweep
 
     # h (g/l) alpha = 9.8e-309 < 2.2e-308: theta' moves in subnormal steps.
     with pytest.raises(NoReturnError, match="underflow"):
@@ -247,8 +247,8 @@ def test_return_rule_decides_as_the_coursework_program(z1, z1n, z2, z2n, i, n):
     # The one statement of the first-return rule (the scalar search and the sweep's lanes
     # both call it) against the coursework program problem3.py's sign_change on the two
     # points Z_i, Z_{i+1}, and the window Z_{j-2} .. Z_{j+2} that the estimate needs.
-    from pendulab._kernels import FOUND, LEFT_OSCILLATION, NO_RETURN, TOO_EARLY, UNDECIDED, return_rule
-    from pendulab.coursework import load
+    from pendulab.engine.kernels import FOUND, LEFT_OSCILLATION, NO_RETURN, TOO_EARLY, UNDECIDED, return_rule
+    from pendulab.jobs.coursework import load
 
     j, over = load()["problem3.py"].sign_change([z1, z1n], [z2, z2n])
     if over is not None or math.isnan(z1n):  # a NaN angle (a blow-up) is over the top too

@@ -18,8 +18,8 @@ def test_docs_build_without_warnings(tmp_path):
         capture_output=True, text=True, env=env, timeout=600,
     )
     assert res.returncode == 0, res.stderr[-4000:]
-    period = (out / "_api" / "pendulab.period.html").read_text()
-    assert 'id="pendulab.period.agm_period"' in period  # the reference has the functions
+    period = (out / "_api" / "pendulab.numerics.period.html").read_text()
+    assert 'id="pendulab.numerics.period.agm_period"' in period  # the reference has the functions
     assert "Carvalhaes" in period  # and their numpy-style sections (References)
     tutorial = (out / "tutorial.html").read_text()
     assert "Problem 5" in tutorial and "<img" in tutorial  # the notebook with its figures

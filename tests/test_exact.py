@@ -5,8 +5,8 @@ from fractions import Fraction
 import mpmath
 import pytest
 
-from pendulab.errors import InputError
-from pendulab.inputs import parse_angle, parse_number
+from pendulab.core.errors import InputError
+from pendulab.core.inputs import parse_angle, parse_number
 
 
 @pytest.mark.parametrize(
@@ -72,7 +72,7 @@ def test_multiples_of_pi_are_the_nearest_double():
     """float(Exact) of c pi over the whole double range: normal, subnormal, overflow."""
     import random
 
-    from pendulab.exact import Exact, _pi_bounds
+    from pendulab.core.exact import Exact, _pi_bounds
 
     for bits in (8, 128, 1000):
         lo, hi = _pi_bounds(bits)

@@ -1,12 +1,12 @@
-"""The certified fast step of (3) (pendulab._kernels.taylor2_fast_step) equals the literal one bit for bit.
+"""The certified fast step of (3) (pendulab.engine.kernels.taylor2_fast_step) equals the literal one bit for bit.
 
-``taylor2_fast_step`` takes ``sin`` and ``cos`` from a table (:mod:`pendulab._fast`) and
+``taylor2_fast_step`` takes ``sin`` and ``cos`` from a table (:mod:`pendulab.engine.fast`) and
 returns its own result only where a rounding test proves it equal to
-:func:`pendulab._kernels.taylor2_step` with the C library's functions. These tests check the
+:func:`pendulab.engine.kernels.taylor2_step` with the C library's functions. These tests check the
 table and its error against mpmath and the C library (the margins the test relies on, with
 a safety factor), the points of the driver and the period search under both kernel codes
 against the literal loop over many pendulums and steps, that the fallback is taken, and
-that the library's runs take the fast code where :func:`pendulab._kernels.kernel_code` says.
+that the library's runs take the fast code where :func:`pendulab.engine.kernels.kernel_code` says.
 """
 import math
 
@@ -17,9 +17,10 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 from numba import njit
 
-from pendulab import _kernels
-from pendulab._fast import FAST_COS, FAST_MAX_K, FAST_SIN, certified_step, margins, table_sin_cos
-from pendulab._kernels import (
+from pendulab.core.methods import Status
+from pendulab.engine import kernels
+from pendulab.engine.fast import FAST_COS, FAST_MAX_K, FAST_SIN, certified_step, margins, table_sin_cos
+from pendulab.engine.kernels import (
     FOUND,
     RK4,
     TAYLOR2,
@@ -30,8 +31,7 @@ from pendulab._kernels import (
     taylor2_fast_step,
     taylor2_step,
 )
-from pendulab._libm import cos, sin
-from pendulab.methods import Status
+from pendulab.engine.libm import cos, sin
 from reference import G
 
 #: The margins must exceed the table's distance from the C library's values (plus half an
@@ -185,15 +185,15 @@ def test_kernel_code_chooses_the_fast_step_for_fine_steps_of_3():
 
 
 def _codes_used(monkeypatch, name):
-    """Record the kernel code of every call of ``_kernels.<name>`` (the library's driver or search)."""
+    """Record the kernel code of every call of ``engine.kernels.<name>`` (the library's driver or search)."""
     seen = []
-    kernel = getattr(_kernels, name)
+    kernel = getattr(kernels, name)
 
     def spy(code, *args):
         seen.append(code)
         return kernel(code, *args)
 
-    monkeypatch.setattr(_kernels, name, spy)
+    monkeypatch.setattr(kernels, name, spy)
     return seen
 
 
@@ -201,15 +201,15 @@ def _codes_used(monkeypatch, name):
 def test_the_library_runs_the_chosen_code(monkeypatch, h, code):
     """simulate (every point, thinned) and the period search run kernel_code's code, and
     simulate gives the coursework loop's points, bit for bit."""
-    from pendulab import crossing, taylor
+    from pendulab.numerics import crossing, simulation
 
     c = -G / 2.0800838231
     n = 20_000
     ref1, ref2 = _python_loop(2.5, c, h, n)
     driven = _codes_used(monkeypatch, "drive")
-    full = taylor.simulate(2.0800838231, 2.5, h, n * h)
+    full = simulation.simulate(2.0800838231, 2.5, h, n * h)
     assert len(full.theta) == n + 1 and _same(full.theta, ref1) and _same(full.omega, ref2)
-    thin = taylor.simulate(2.0800838231, 2.5, h, n * h, stride=1000)
+    thin = simulation.simulate(2.0800838231, 2.5, h, n * h, stride=1000)
     assert _same(thin.theta, ref1[::1000]) and _same(thin.omega, ref2[::1000])
     assert driven and set(driven) == {code}
     searched = _codes_used(monkeypatch, "search_return")
@@ -233,7 +233,7 @@ def test_period_search_with_the_fast_code_equals_the_literal_one_at_a_fine_step(
     """search_period at h = 1e-6 (millions of steps, thousands of them through the fallback):
     the same status, the same j, the same window and the same estimates, bit for bit, with the
     fast code (chosen) and with the literal one (forced)."""
-    from pendulab import crossing
+    from pendulab.numerics import crossing
 
     h = 1e-6
     assert kernel_code(TAYLOR2, -G / length, h) == TAYLOR2_FAST
@@ -241,7 +241,7 @@ def test_period_search_with_the_fast_code_equals_the_literal_one_at_a_fine_step(
     fast = crossing.search_period(length, alpha, h)
     assert set(searched) == {TAYLOR2_FAST}
     searched.clear()
-    monkeypatch.setattr(_kernels, "kernel_code", lambda method, c, h: method)
+    monkeypatch.setattr(kernels, "kernel_code", lambda method, c, h: method)
     literal = crossing.search_period(length, alpha, h)
     assert set(searched) == {TAYLOR2}
     assert fast.status == literal.status == Status.FOUND

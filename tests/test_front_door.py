@@ -179,10 +179,10 @@ def test_the_notebook_names_import_from_the_package():
     import pendulab
     from pendulab import agm_period, estimate_period, period_digits, problem1, problem5, simulate
 
-    assert simulate.__module__ == "pendulab.taylor" and estimate_period.__module__ == "pendulab.crossing"
+    assert simulate.__module__ == "pendulab.numerics.simulation" and estimate_period.__module__ == "pendulab.numerics.crossing"
     assert agm_period(1.0, 0.0) == pendulab.small_angle_period(1.0)
     assert period_digits("1", "0", digits=5) == "2.0064"  # 2 pi sqrt(1/9.80665) = 2.00640929...
-    assert problem1.__module__ == problem5.__module__ == "pendulab.problems"
+    assert problem1.__module__ == problem5.__module__ == "pendulab.jobs.problems"
     assert set(pendulab.__all__) <= set(dir(pendulab))
     with pytest.raises(AttributeError):
         pendulab.no_such_name  # noqa: B018
@@ -279,7 +279,7 @@ def test_public_functions_have_real_type_hints():
 
 
 def test_no_stray_public_names_in_the_period_module():
-    import pendulab.period as period
+    import pendulab.numerics.period as period
 
     public = {n for n in dir(period) if not n.startswith("_")}
     assert not public & {"v", "sys", "threading", "math", "numbers"}

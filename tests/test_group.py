@@ -5,8 +5,8 @@ import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
-from pendulab.errors import InputError
-from pendulab.group import group_length
+from pendulab.core.errors import InputError
+from pendulab.numerics.group import group_length
 
 
 def test_spec_example():

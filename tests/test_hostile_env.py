@@ -20,9 +20,10 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 
 from conftest import assert_one_line_error
-from pendulab import _atomic, key, methods
-from pendulab import _validate as v
-from pendulab.errors import InputError
+from pendulab.core import atomic, methods
+from pendulab.core import validate as v
+from pendulab.core.errors import InputError
+from pendulab.jobs import key
 
 CLASS = "262 407 634\n99999 1\n"
 
@@ -149,7 +150,7 @@ def test_the_write_keeps_the_old_mode(tmp_path):
     target = tmp_path / "key.csv"
     target.write_text("old")
     os.chmod(target, 0o600)
-    _atomic.write_text(target, "new")
+    atomic.write_text(target, "new")
     assert target.read_text() == "new" and stat.S_IMODE(target.stat().st_mode) == 0o600
 
 
@@ -157,7 +158,7 @@ def test_the_write_keeps_the_old_mode(tmp_path):
 def test_a_new_file_takes_the_umask(tmp_path, umask):
     old = os.umask(umask)
     try:
-        _atomic.write_text(tmp_path / "new.csv", "x")
+        atomic.write_text(tmp_path / "new.csv", "x")
     finally:
         os.umask(old)
     assert stat.S_IMODE((tmp_path / "new.csv").stat().st_mode) == 0o666 & ~umask
@@ -170,8 +171,8 @@ def test_a_symlink_is_written_through(tmp_path):
     os.chmod(real, 0o640)
     link = tmp_path / "link.csv"
     os.symlink(real.name, link)
-    _atomic.check_writable("output", link)
-    _atomic.write_text(link, "new")
+    atomic.check_writable("output", link)
+    atomic.write_text(link, "new")
     assert link.is_symlink() and real.read_text() == "new" and stat.S_IMODE(real.stat().st_mode) == 0o640
     assert sorted(p.name for p in tmp_path.iterdir()) == ["link.csv", "real.csv"]
 
@@ -219,7 +220,7 @@ def test_another_users_file_in_a_sticky_folder_is_refused(tmp_path, monkeypatch)
     monkeypatch.setattr(os, "stat", stat_as_owned)
     monkeypatch.setattr(os, "access", lambda p, mode, **k: True)  # the folder is writable to all
     with pytest.raises(InputError, match="only its owner may replace it"):
-        _atomic.check_writable("output", target)
+        atomic.check_writable("output", target)
     assert target.read_text() == "someone's"
 
 
@@ -250,7 +251,7 @@ def test_an_immutable_file_is_refused_before_the_work(tmp_path):
         pytest.skip("chattr +i is not allowed here (needs CAP_LINUX_IMMUTABLE)")
     try:
         with pytest.raises(InputError, match="read-only"):
-            _atomic.check_writable("output", target)
+            atomic.check_writable("output", target)
     finally:
         subprocess.run(["chattr", "-i", target])
 
@@ -333,7 +334,7 @@ def test_a_scheduler_port_that_is_not_dask_is_one_line(cli, monkeypatch, reply):
     """A server that accepts and says nothing (Dask would wait for ever), or answers HTTP
     (whose bytes Dask reads as a frame length of exabytes): one line within the timeout."""
     pytest.importorskip("dask.distributed")
-    from pendulab.sweep import cluster
+    from pendulab.jobs.sweep import cluster
 
     monkeypatch.setattr(cluster, "CONNECT_TIMEOUT", 1)
     server = socket.socket()
@@ -447,7 +448,7 @@ def test_the_sweeps_cap_weighs_steps_by_cost():
     AGM) is refused for taylor:30, whose steps cost 40 times those of taylor2."""
     from scipy.special import ellipk
 
-    from pendulab.sweep import MAX_TOTAL_STEPS, sweep
+    from pendulab.jobs.sweep import MAX_TOTAL_STEPS, sweep
 
     amplitudes = np.linspace(0.1, 3.0, 2000)
     periods = 4 * np.sqrt(1.0 / 9.80665) * ellipk(np.sin(amplitudes / 2) ** 2)

@@ -1,4 +1,4 @@
-"""pendulab.inputs, the one parser of every typed value, and pendulab.methods, the registry.
+"""pendulab.core.inputs, the one parser of every typed value, and pendulab.core.methods, the registry.
 
 Reference values are exact rationals written by hand from the literals (``115.2cm`` is
 1152/1000 m) or mpmath at 50 digits for multiples of pi.
@@ -15,8 +15,8 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 
 from hostile import HOSTILE
-from pendulab import inputs, methods
-from pendulab.errors import InputError, NumericalError, PendulabError
+from pendulab.core import inputs, methods
+from pendulab.core.errors import InputError, NumericalError, PendulabError
 
 M = {"m": Fraction(1), "cm": Fraction(1, 100), "mm": Fraction(1, 1000)}
 
@@ -210,10 +210,11 @@ def test_registry():
 
 
 def test_kernels_share_the_registry_codes():
-    from pendulab import _kernels, sweep
+    from pendulab.engine import kernels
+    from pendulab.jobs import sweep
 
-    assert tuple(methods.Kernel) == (_kernels.TAYLOR2, _kernels.RK4, _kernels.VERLET, _kernels.TAYLOR)
-    assert tuple(methods.Status) == (_kernels.FOUND, _kernels.NO_RETURN, _kernels.LEFT_OSCILLATION, _kernels.TOO_EARLY)
+    assert tuple(methods.Kernel) == (kernels.TAYLOR2, kernels.RK4, kernels.VERLET, kernels.TAYLOR)
+    assert tuple(methods.Status) == (kernels.FOUND, kernels.NO_RETURN, kernels.LEFT_OSCILLATION, kernels.TOO_EARLY)
     assert sweep.STATUS == ("found", "no_return", "left_oscillation", "too_early")
 
 

@@ -4,11 +4,11 @@ import math
 import numpy as np
 import pytest
 
-from pendulab.crossing import estimate_period
-from pendulab.errors import InputError
-from pendulab.motion import exact_motion, global_error
-from pendulab.period import agm_period
-from pendulab.taylor import METHODS, method_code, simulate
+from pendulab.core.errors import InputError
+from pendulab.numerics.crossing import estimate_period
+from pendulab.numerics.motion import exact_motion, global_error
+from pendulab.numerics.period import agm_period
+from pendulab.numerics.simulation import METHODS, method_code, simulate
 from reference import G, taylor2_plain
 
 

@@ -6,8 +6,8 @@ import numpy as np
 import pytest
 from scipy.interpolate import BarycentricInterpolator
 
-from pendulab.errors import InputError
-from pendulab.interpolation import divided_differences, inverse_cubic, newton_eval
+from pendulab.core.errors import InputError
+from pendulab.numerics.interpolation import divided_differences, inverse_cubic, newton_eval
 
 
 def test_newton_form_agrees_with_scipy_barycentric():
@@ -76,7 +76,7 @@ def test_scaled_nodes_give_the_same_bits():
 
 
 def test_error_estimate_below_rounding_level_is_flagged():
-    from pendulab.crossing import estimate_period
+    from pendulab.numerics.crossing import estimate_period
 
     # The README's h = 1e-4 row: the estimate 4.4e-17 comes from rounding t_k = k h.
     est = estimate_period(2.0800838231, 4 * math.pi / 5, 1e-4)

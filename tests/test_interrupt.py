@@ -14,8 +14,8 @@ import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
-from pendulab import _kernels
-from pendulab._interrupt import deferred, pieces
+from pendulab.core.interrupt import deferred, pieces
+from pendulab.engine import kernels
 from reference import G
 
 METHODS = [(0, 2), (1, 4), (2, 2), (3, 1), (3, 5), (3, 12)]  # taylor2, rk4, verlet, taylor:1, 5, 12
@@ -26,7 +26,7 @@ def _one_call(method, order, alpha, c, h, n):
     reference for the pieces."""
     z1, z2 = np.empty(n + 1), np.empty(n + 1)
     z1[0], z2[0] = alpha, 0.0
-    _kernels.drive(_kernels.kernel_code(method, c, h), order, alpha, 0.0, c, h, 0, n, 1, n, z1[1:], z2[1:])
+    kernels.drive(kernels.kernel_code(method, c, h), order, alpha, 0.0, c, h, 0, n, 1, n, z1[1:], z2[1:])
     return z1, z2
 
 
@@ -39,19 +39,19 @@ def test_pieces_give_the_same_bits_as_one_call(m, alpha, h, n, stride, piece):
     method, order = m
     c = -G / 2.0
     ref1, ref2 = _one_call(method, order, alpha, c, h, n)
-    one = _kernels.first_return(_kernels.kernel_code(method, c, h), order, alpha, c, h, n)
+    one = kernels.first_return(kernels.kernel_code(method, c, h), order, alpha, c, h, n)
     with pytest.MonkeyPatch.context() as mp:
-        mp.setattr(_kernels, "CHUNK_COST", piece * 50)  # pieces of piece * 50 / cost steps
+        mp.setattr(kernels, "CHUNK_COST", piece * 50)  # pieces of piece * 50 / cost steps
         _cut(method, order, alpha, c, h, n, stride, ref1, ref2, one)
 
 
 def _cut(method, order, alpha, c, h, n, stride, ref1, ref2, one):
-    z1, z2 = _kernels.trajectory(method, order, alpha, c, h, n)
+    z1, z2 = kernels.trajectory(method, order, alpha, c, h, n)
     assert np.array_equal(z1, ref1, equal_nan=True) and np.array_equal(z2, ref2, equal_nan=True)
     keep = np.r_[np.arange(0, n + 1, stride), [n] if n % stride else []].astype(int)
-    t1, t2 = _kernels.thinned(method, order, alpha, c, h, n, stride, len(keep))
+    t1, t2 = kernels.thinned(method, order, alpha, c, h, n, stride, len(keep))
     assert np.array_equal(t1, ref1[keep], equal_nan=True) and np.array_equal(t2, ref2[keep], equal_nan=True)
-    cut = _kernels.first_return_pieces(method, order, alpha, c, h, n)
+    cut = kernels.first_return_pieces(method, order, alpha, c, h, n)
     assert cut[0] == one[0] and cut[1] == one[1]
     assert np.array_equal(cut[2], one[2]) and np.array_equal(cut[3], one[3])
 
@@ -59,18 +59,18 @@ def _cut(method, order, alpha, c, h, n, stride, ref1, ref2, one):
 def test_fast_kernels_in_pieces_give_the_same_bits(monkeypatch):
     """(3) long and fine runs through the table's sine (the fast kernel code), in pieces."""
     alpha, c, h, n = 2.5, -G / 2.0800838231, 1e-5, 501_234
-    assert _kernels.kernel_code(0, c, h) == _kernels.TAYLOR2_FAST
+    assert kernels.kernel_code(0, c, h) == kernels.TAYLOR2_FAST
     ref1, ref2 = _one_call(0, 2, alpha, c, h, n)
-    one = _kernels.first_return(_kernels.TAYLOR2_FAST, 2, alpha, c, h, n)
-    assert one[0] == _kernels.FOUND  # the period, about 4.8 s, within n h
-    monkeypatch.setattr(_kernels, "CHUNK_COST", 9973)
-    z1, z2 = _kernels.trajectory(0, 2, alpha, c, h, n)
+    one = kernels.first_return(kernels.TAYLOR2_FAST, 2, alpha, c, h, n)
+    assert one[0] == kernels.FOUND  # the period, about 4.8 s, within n h
+    monkeypatch.setattr(kernels, "CHUNK_COST", 9973)
+    z1, z2 = kernels.trajectory(0, 2, alpha, c, h, n)
     assert np.array_equal(z1, ref1) and np.array_equal(z2, ref2)
     for stride in (7, 9973, 50_000):
         keep = np.r_[np.arange(0, n + 1, stride), [n] if n % stride else []].astype(int)
-        t1, t2 = _kernels.thinned(0, 2, alpha, c, h, n, stride, len(keep))
+        t1, t2 = kernels.thinned(0, 2, alpha, c, h, n, stride, len(keep))
         assert np.array_equal(t1, ref1[keep]) and np.array_equal(t2, ref2[keep])
-    cut = _kernels.first_return_pieces(0, 2, alpha, c, h, n)
+    cut = kernels.first_return_pieces(0, 2, alpha, c, h, n)
     assert cut[:2] == one[:2] and np.array_equal(cut[2], one[2]) and np.array_equal(cut[3], one[3])
 
 

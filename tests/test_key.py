@@ -19,9 +19,9 @@ from hypothesis import strategies as st
 
 import plain_pendulum as plain
 from pendulab.cli import main
-from pendulab.errors import InputError
-from pendulab.key import answer_key, parse_entries, parse_groups, tolerance
-from pendulab.period import FIXED_ITERATIONS_ULPS
+from pendulab.core.errors import InputError
+from pendulab.jobs.key import answer_key, parse_entries, parse_groups, tolerance
+from pendulab.numerics.period import FIXED_ITERATIONS_ULPS
 from reference import G
 
 GROUPS = [(262, 407, 634), (99999, 1), (81234, 90876), (11111,), (98765, 43210, 55555)]
@@ -249,7 +249,7 @@ def test_cli_pdf_has_the_class_page_and_names(class_file, tmp_path, capsys):
     ("1,2\n", ["--output", "/nonexistent-folder/key.csv"], "--output"),
 ])
 def test_cli_bad_input_one_line_before_the_work(tmp_path, capsys, monkeypatch, content, args, words):
-    from pendulab import key as key_module
+    from pendulab.jobs import key as key_module
 
     def no_work(*a, **k):
         raise AssertionError("the work started")
@@ -290,7 +290,7 @@ def test_the_coursework_programs_reach_the_class_wide_tolerances(key):
     from the formulas, independent of the engine) agree with the key's answers to them."""
     import numpy as np
 
-    from pendulab.coursework import load
+    from pendulab.jobs.coursework import load
 
     p = load()
     c = key.to_dict()["common"]
@@ -329,7 +329,7 @@ def test_the_coursework_programs_reach_the_class_wide_tolerances(key):
 def test_tolerances_are_codes_and_their_words_come_from_both_catalogues(key, groups_file, tmp_path, capsys):
     """The key holds each tolerance as codes (kind, value, unit, reason); the words are the
     catalogues', in both languages, and every output shows the same words."""
-    from pendulab.key import TOLERANCES
+    from pendulab.jobs.key import TOLERANCES
     from pendulab.report.key import agreement, document, why
 
     assert key.to_dict()["tolerances"] == [t.to_dict() for t in TOLERANCES]
@@ -363,7 +363,7 @@ def test_a_failure_between_the_two_renames_leaves_the_old_pair(key, tmp_path, mo
     temporary file."""
     import os
 
-    from pendulab import _atomic
+    from pendulab.core import atomic
     from pendulab.report.key import write_key
 
     out, side = tmp_path / "key.csv", tmp_path / "key-class.csv"
@@ -380,7 +380,7 @@ def test_a_failure_between_the_two_renames_leaves_the_old_pair(key, tmp_path, mo
             raise OSError(28, "No space left on device")
         real(src, dst)
 
-    monkeypatch.setattr(_atomic.os, "replace", replace)
+    monkeypatch.setattr(atomic.os, "replace", replace)
     with pytest.raises(OSError):
         write_key(key, out)
     assert calls[:2] == [out, side]
@@ -392,13 +392,13 @@ def test_a_failure_between_the_two_renames_leaves_the_old_pair(key, tmp_path, mo
     with pytest.raises(OSError):
         write_key(key, out)
     assert not out.exists() and sorted(p.name for p in tmp_path.iterdir()) == ["key-class.csv"] * old_class
-    monkeypatch.setattr(_atomic.os, "replace", real)
+    monkeypatch.setattr(atomic.os, "replace", real)
     assert write_key(key, out) == [out, side]  # and a write that succeeds writes both
     assert out.read_text().startswith("line,students") and side.read_text().startswith("problem,answer,value")
 
 
 def test_groups_listed_again_are_data_and_the_warning_names_each(tmp_path, capsys):
-    from pendulab.key import listed_again
+    from pendulab.jobs.key import listed_again
 
     text = "1 2\n3 4\n2 1\n5\n4 3\n1 2\n"
     assert listed_again(parse_entries(text)) == [((1, 2), [1, 3, 6]), ((3, 4), [2, 5])]

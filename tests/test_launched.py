@@ -8,8 +8,8 @@ import numpy as np
 import pytest
 from scipy.integrate import solve_ivp
 
-from pendulab.launched import launch, launched_motion
-from pendulab.motion import exact_motion
+from pendulab.numerics.launched import launch, launched_motion
+from pendulab.numerics.motion import exact_motion
 from reference import G, ellipk_period
 
 

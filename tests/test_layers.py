@@ -19,15 +19,14 @@ ROOT = Path(__file__).resolve().parents[1]
 SRC = ROOT / "src"
 PACKAGE = "pendulab"
 
-#: The layers, bottom first. A name covers the module and, for a package, every module in it.
+#: The layers, bottom first, each the folders of ``src/pendulab`` it is made of: a module's
+#: layer is the folder it lies in (``pendulab.engine.kernels`` is in ``engine``).
 LAYERS: dict[str, tuple[str, ...]] = {
-    "base": ("errors", "exact", "cases", "methods", "constants", "_version", "_atomic", "_extras", "_interrupt"),
-    "boundary": ("inputs", "_validate"),
-    "kernels": ("_kernels", "_fast", "_agm", "_mean", "_libm", "_warm", "_numba_cache"),
-    "numerics": ("results", "period", "taylor", "crossing", "dense", "interpolation", "newton", "lsq",
-                 "quadrature", "uncertainty", "motion", "launched", "approximations", "group"),
-    "jobs": ("problems", "key", "sweep", "coursework"),
-    "presenters": ("cli", "report", "web", "plots", "words", "__main__", ""),  # "": the package's face
+    "core": ("core",),
+    "engine": ("engine",),
+    "numerics": ("numerics",),
+    "jobs": ("jobs",),
+    "presenters": ("cli", "report", "web", "plots", "__main__", ""),  # "": the package's face
 }
 
 #: Private names that one module takes from another, each with its reason. Keep it short.
@@ -55,12 +54,12 @@ def tree(module: str) -> ast.Module:
 
 
 def layer_of(module: str) -> int:
-    """The index in :data:`LAYERS` of ``module`` (``pendulab.sweep.kernel`` is in ``sweep``'s)."""
+    """The index in :data:`LAYERS` of ``module``: the layer of the folder it lies in."""
     top = module.split(".")[1] if "." in module else ""
     for i, names in enumerate(LAYERS.values()):
         if top in names:
             return i
-    raise AssertionError(f"{module} is in no layer: add it to LAYERS (and to docs/design.md)")
+    raise AssertionError(f"{module} lies in no layer's folder: move it into one (docs/design.md)")
 
 
 def imports(module: str) -> list[tuple[str, str, int]]:
@@ -81,7 +80,7 @@ def imports(module: str) -> list[tuple[str, str, int]]:
                 continue
             for a in node.names:
                 sub = f"{target}.{a.name}"
-                # ``from . import inputs`` imports the module pendulab.inputs, not a name of pendulab
+                # ``from . import inputs`` imports the module pendulab.core.inputs, not a name of pendulab
                 out.append((sub, "", node.lineno) if sub in modules() else (target, a.name, node.lineno))
     return out
 
@@ -159,22 +158,25 @@ def test_results_carry_no_words_and_jobs_no_typesetting():
 
 # --------------------------------------------------------------------------- the checker itself
 def test_the_checker_sees_function_level_relative_imports(tmp_path, monkeypatch):
-    """A function-level ``from .period import _x`` in a boundary module is an upward, private import."""
+    """A function-level ``from ..numerics.period import _x`` in a core module is an upward, private import."""
     pkg = tmp_path / PACKAGE
-    pkg.mkdir()
+    for folder in ("core", "numerics"):
+        (pkg / folder).mkdir(parents=True)
+        (pkg / folder / "__init__.py").write_text("")
     (pkg / "__init__.py").write_text("")
-    (pkg / "period.py").write_text("from .inputs import parse\n\ndef _x():\n    return 1\n")
-    (pkg / "inputs.py").write_text("def parse():\n    from .period import _x\n    return _x()\n")
+    (pkg / "numerics" / "period.py").write_text("from ..core.inputs import parse\n\ndef _x():\n    return 1\n")
+    (pkg / "core" / "inputs.py").write_text("def parse():\n    from ..numerics.period import _x\n    return _x()\n")
     monkeypatch.setattr(sys.modules[__name__], "SRC", tmp_path)
     modules.cache_clear()
     tree.cache_clear()
     try:
-        assert ("pendulab.period", "_x", 2) in imports("pendulab.inputs")
+        assert ("pendulab.numerics.period", "_x", 2) in imports("pendulab.core.inputs")
         with pytest.raises(AssertionError, match="inputs:2"):
             test_no_import_runs_upward()
-        with pytest.raises(AssertionError, match=r"pendulab\.inputs -> pendulab\.period|pendulab\.period -> pendulab\.inputs"):
+        with pytest.raises(AssertionError, match=r"pendulab\.core\.inputs -> pendulab\.numerics\.period|"
+                                                 r"pendulab\.numerics\.period -> pendulab\.core\.inputs"):
             test_no_import_circle()
-        with pytest.raises(AssertionError, match=r"uses pendulab\.period\._x"):
+        with pytest.raises(AssertionError, match=r"uses pendulab\.numerics\.period\._x"):
             test_no_private_name_crosses_modules()
     finally:
         modules.cache_clear()
@@ -182,22 +184,31 @@ def test_the_checker_sees_function_level_relative_imports(tmp_path, monkeypatch)
 
 
 def test_design_page_lists_the_same_layers():
-    """docs/design.md's layer table names every module of :data:`LAYERS`, each on its layer's line."""
+    """docs/design.md's layer table names every folder of :data:`LAYERS`, each on its layer's line."""
     text = (ROOT / "docs" / "design.md").read_text(encoding="utf-8")
     table = text.split("<!-- layers -->")[1]
     for layer, names in LAYERS.items():
         line = next((ln for ln in table.splitlines() if re.match(rf"\|\s*{layer}\s*\|", ln)), None)
         assert line is not None, layer
         for name in names:
-            if not name.startswith("__") and name in {p.split(".")[1] for p in modules() if "." in p}:
-                assert f"`{name}`" in line, (layer, name)
+            if name and not name.startswith("__"):
+                assert f"`{name}/`" in line, (layer, name)
+
+
+def test_the_top_level_holds_only_the_entry_points():
+    """``ls src/pendulab`` shows the architecture: every module lies in a layer's folder but the
+    package's face (``__init__``) and ``python -m pendulab`` (``__main__``)."""
+    top = sorted(p.name for p in (SRC / PACKAGE).glob("*.py"))
+    assert top == ["__init__.py", "__main__.py"], top
+    folders = {p.name for p in (SRC / PACKAGE).iterdir() if p.is_dir() and (p / "__init__.py").is_file()}
+    assert folders == {name for names in LAYERS.values() for name in names if name and not name.startswith("__")}
 
 
 # --------------------------------------------------------------------------- numba's cache
 def test_kernel_sources_are_what_compiled_code_is_made_of():
-    """``_numba_cache.KERNEL_SOURCES`` lists the modules with kernels and every package module
+    """``numba_cache.KERNEL_SOURCES`` lists the modules with kernels and every package module
     they import, transitively: a cached kernel is kept only while all of them are unchanged."""
-    from pendulab._numba_cache import KERNEL_SOURCES
+    from pendulab.engine.numba_cache import KERNEL_SOURCES
 
     def compiles(m: str) -> bool:
         text = modules()[m].read_text(encoding="utf-8")

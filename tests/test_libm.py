@@ -1,4 +1,4 @@
-"""The kernels' sin and cos (pendulab._libm) return Python's math.sin and math.cos bit for bit.
+"""The kernels' sin and cos (pendulab.engine.libm) return Python's math.sin and math.cos bit for bit.
 
 They call the C library directly instead of through numba's intrinsics (for speed), so
 the coursework's numbers depend on their being the same functions.
@@ -9,8 +9,8 @@ import numpy as np
 import pytest
 from numba import njit
 
-from pendulab._kernels import FOUND, TAYLOR2, TAYLOR2_FAST, drive, first_return
-from pendulab._libm import cos, sin
+from pendulab.engine.kernels import FOUND, TAYLOR2, TAYLOR2_FAST, drive, first_return
+from pendulab.engine.libm import cos, sin
 from reference import G, taylor2_plain
 
 

@@ -7,11 +7,11 @@ import numpy as np
 import pytest
 import scipy.linalg
 
-from pendulab.errors import InputError, NumericalError
-from pendulab.lsq import least_squares, round_half_up
-from pendulab.period import agm_period
-from pendulab.problems import problem4
-from pendulab.taylor import simulate
+from pendulab.core.errors import InputError, NumericalError
+from pendulab.jobs.problems import problem4
+from pendulab.numerics.lsq import least_squares, round_half_up
+from pendulab.numerics.period import agm_period
+from pendulab.numerics.simulation import simulate
 
 
 def basis10_python(t):
@@ -100,7 +100,7 @@ def test_deviations_and_answer(p4):
     assert ssd_ref * (1 - 1e-12) <= p4.fit.ssd <= ssd_ref * (1 + 1e-3)  # lstsq's SSD is the minimum
     assert p4.fit.max_deviation == pytest.approx(np.max(np.abs(res)), rel=1e-3)
     assert p4.fit.max_deviation > 1e-5 and not p4.below_tolerance  # 4(d)(ii): no
-    from pendulab.words import sentence  # the words the CLI prints for that decision
+    from pendulab.report.words import sentence  # the words the CLI prints for that decision
 
     assert sentence("p4.answer.no", deviation=p4.fit.max_deviation, at=p4.fit.argmax_deviation,
                     tolerance=p4.tolerance, exact=p4.exact_deviation).startswith("No")

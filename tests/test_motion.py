@@ -5,10 +5,10 @@ import mpmath
 import numpy as np
 import pytest
 
-from pendulab.errors import InputError
-from pendulab.motion import energy, exact_motion, global_error, jacobi, quarter_period
-from pendulab.period import agm_period
-from pendulab.taylor import simulate
+from pendulab.core.errors import InputError
+from pendulab.numerics.motion import energy, exact_motion, global_error, jacobi, quarter_period
+from pendulab.numerics.period import agm_period
+from pendulab.numerics.simulation import simulate
 from reference import G
 
 
@@ -75,7 +75,7 @@ def test_jacobi_agm_agrees_with_scipy_away_from_pi(kp):
     # Away from pi scipy's ellipj is accurate to a few ulps: the AGM from k' must agree.
     from scipy.special import ellipj
 
-    from pendulab.motion import jacobi_agm
+    from pendulab.numerics.motion import jacobi_agm
 
     k = math.sqrt(1 - kp * kp)
     u = np.linspace(-7, 7, 29)
@@ -143,7 +143,7 @@ def mp_motion_many(length, alpha, ts, dps=60):
 @pytest.mark.parametrize("alpha", [2.0, math.pi - 1e-9, math.pi - 1e-12])
 def test_exact_motion_within_its_bound_densely(alpha):
     # 1500 points over 2.5 periods (the 17 points above missed 7.9e-14 at pi - 1e-12).
-    from pendulab.motion import exact_motion_error_bound
+    from pendulab.numerics.motion import exact_motion_error_bound
 
     length = 2.0800838231
     t = np.linspace(0, 2.5 * agm_period(length, alpha), 1500)
@@ -158,7 +158,7 @@ def test_exact_motion_within_its_bound_densely(alpha):
 
 @pytest.mark.parametrize("alpha", [0.5, math.pi - 1e-12])
 def test_exact_motion_within_its_bound_after_1000_periods(alpha):
-    from pendulab.motion import exact_motion_error_bound
+    from pendulab.numerics.motion import exact_motion_error_bound
 
     length = 2.0800838231
     period = agm_period(length, alpha)

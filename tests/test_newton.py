@@ -6,9 +6,9 @@ import numpy as np
 import pytest
 from scipy.optimize import brentq
 
-from pendulab.errors import InputError, NumericalError
-from pendulab.newton import PeriodEquation, check_interval, newton
-from pendulab.problems import problem2
+from pendulab.core.errors import InputError, NumericalError
+from pendulab.jobs.problems import problem2
+from pendulab.numerics.newton import PeriodEquation, check_interval, newton
 from reference import G_TEXT, G
 
 
@@ -169,9 +169,9 @@ def test_results_carry_codes_and_their_numbers():
 def test_every_code_has_its_words_in_both_catalogues():
     import typing
 
-    from pendulab import newton as nt
-    from pendulab.problems import TMaxRule
-    from pendulab.words import sentence
+    from pendulab.jobs.problems import TMaxRule
+    from pendulab.numerics import newton as nt
+    from pendulab.report.words import sentence
 
     numbers = {"tol": 1e-3, "correction": 1e-9, "limit": 2e-9, "f_a": -1.0, "f_b": 1.0, "min": 0.1, "max": 0.2,
                "step": 0.01, "width": 0.1, "relation": "<=", "t_hat": 3.9}

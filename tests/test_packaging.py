@@ -20,7 +20,7 @@ OPTIONAL = ("matplotlib", "typst", "rich", "fastapi", "uvicorn", "orjson", "swag
 def test_version_is_single_sourced(cli):
     project = PYPROJECT["project"]
     assert "version" in project["dynamic"] and "version" not in project
-    assert PYPROJECT["tool"]["setuptools"]["dynamic"]["version"] == {"attr": "pendulab._version.__version__"}
+    assert PYPROJECT["tool"]["setuptools"]["dynamic"]["version"] == {"attr": "pendulab.core.version.__version__"}
     assert re.fullmatch(r"\d+\.\d+\.\d+", pendulab.__version__)
     res = cli("--version")
     assert res.code == 0
@@ -44,7 +44,7 @@ def test_core_dependencies_are_lean():
 
 
 def test_each_optional_package_belongs_to_a_declared_extra():
-    from pendulab._extras import EXTRA_OF
+    from pendulab.core.extras import EXTRA_OF
 
     extras = PYPROJECT["project"]["optional-dependencies"]
     for package, extra in EXTRA_OF.items():
@@ -63,7 +63,7 @@ from pendulab.cli import main
 assert main(["period", "-l", "1", "-a", "pi/4"]) == 0
 assert main(["simulate", "-l", "1", "-a", "pi/4", "--step", "0.1", "--t-max", "0.3"]) == 0
 assert main(["estimate", "-l", "1", "-a", "pi/4", "--step", "1e-3"]) == 0
-from pendulab import problems
+from pendulab.jobs import problems
 problems.problem1()
 problems.problem3()
 print("core ok")
@@ -100,8 +100,8 @@ def test_missing_extra_is_one_line(cli, monkeypatch, tmp_path, args, package, ex
 
 def test_require_reraises_a_broken_install(monkeypatch):
     """Only the package itself being absent is 'not installed'; other import errors pass through."""
-    from pendulab._extras import require
-    from pendulab.errors import MissingExtraError
+    from pendulab.core.errors import MissingExtraError
+    from pendulab.core.extras import require
 
     monkeypatch.setitem(sys.modules, "pandas", None)
     with pytest.raises(MissingExtraError, match=r"pendulab\[pandas\]"):

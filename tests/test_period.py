@@ -7,8 +7,8 @@ import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
-from pendulab.errors import InputError
-from pendulab.period import (
+from pendulab.core.errors import InputError
+from pendulab.numerics.period import (
     agm_iterations,
     agm_period,
     fixed_iterations_error,
@@ -71,7 +71,7 @@ def test_seven_iterations_reproduce_spec_and_are_exact_for_moderate_amplitudes()
     # Seven steps of (7) in double precision give the same double as that loop run to
     # convergence; both carry the loop's rounding, so they are within 2 ulp of the
     # correctly rounded period (not always equal to it).
-    from pendulab.period import agm_mean
+    from pendulab.numerics.period import agm_mean
 
     t0 = small_angle_period(1.0)
     for alpha in np.linspace(0, 3.14, 50):
@@ -85,8 +85,8 @@ def test_fixed_count_is_the_coursework_loop_interpreted_and_compiled(iterations)
     # One AGM loop in double precision: the interpreter runs it for one amplitude and for
     # arrays shorter than COMPILED_MIN, numba for longer ones. Both must be the coursework
     # program's loop (agm.py's t_hat), bit for bit, amplitudes up to pi - 1e-15.
-    from pendulab.coursework import load
-    from pendulab.period import COMPILED_MIN
+    from pendulab.jobs.coursework import load
+    from pendulab.numerics.period import COMPILED_MIN
 
     t_hat = load()["agm.py"].t_hat
     rng = np.random.default_rng(iterations)
@@ -98,7 +98,7 @@ def test_fixed_count_is_the_coursework_loop_interpreted_and_compiled(iterations)
 
 
 def test_converged_mean_same_bits_everywhere_and_within_two_ulps_of_mpmath():
-    from pendulab.period import COMPILED_MIN, agm_mean
+    from pendulab.numerics.period import COMPILED_MIN, agm_mean
 
     rng = np.random.default_rng(5)
     b0 = np.concatenate([rng.uniform(0, 1, COMPILED_MIN), np.logspace(-300, 0, 100)])
@@ -193,8 +193,8 @@ def test_signatures_name_their_types_and_exact_inputs_are_their_doubles():
     (a number as written) is taken as its double, as the signatures say."""
     import inspect
 
-    from pendulab.inputs import parse_angle, parse_number
-    from pendulab.period import agm_mean
+    from pendulab.core.inputs import parse_angle, parse_number
+    from pendulab.numerics.period import agm_mean
 
     for f in (agm_period, small_angle_period, agm_mean):
         sig = inspect.signature(f)

@@ -16,8 +16,8 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 
 from conftest import assert_one_line_error
-from pendulab.errors import InputError
-from pendulab.period import period_ball, period_digits, period_mp
+from pendulab.core.errors import InputError
+from pendulab.numerics.period import period_ball, period_digits, period_mp
 from reference import G_TEXT, G, reference_period_kp
 
 
@@ -133,7 +133,7 @@ def test_more_digits_than_python_prints_an_int(cli):
 def test_int_text_prints_any_length(n):
     import sys
 
-    from pendulab.period import _int_text
+    from pendulab.numerics.period import _int_text
 
     limit = sys.get_int_max_str_digits()
     sys.set_int_max_str_digits(0)  # the reference: str() without the limit
@@ -185,7 +185,7 @@ def test_seven_iterations_within_their_bound_up_to_the_truncation_limit():
     # ulp. The adversarial search is tests/test_bounds_adversarial.py; here random amplitudes.
     import numpy as np
 
-    from pendulab.period import FIXED_ITERATIONS_ULPS, agm_period, fixed_iterations_limit
+    from pendulab.numerics.period import FIXED_ITERATIONS_ULPS, agm_period, fixed_iterations_limit
 
     limit = fixed_iterations_limit()
     assert 3.2e-14 < 3.141592653589793 - limit < 3.3e-14
@@ -208,7 +208,7 @@ def test_seven_iterations_within_their_bound_up_to_the_truncation_limit():
 )
 def test_decimal_text_is_mpmath_nstr_layout(digits, lead, exponent):
     """The proved decimal is printed as mpmath.nstr(x, digits, strip_zeros=False) prints it."""
-    from pendulab.period import _decimal_text
+    from pendulab.numerics.period import _decimal_text
 
     n = 10 ** (digits - 1) + lead % (9 * 10 ** (digits - 1))
     with mpmath.workdps(digits + 10):

@@ -17,13 +17,13 @@ import pytest
 from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 
-from pendulab import coursework, problems
 from pendulab.cli import main
-from pendulab.group import group_length
-from pendulab.interpolation import inverse_cubic
-from pendulab.lsq import least_squares
-from pendulab.period import agm_period
-from pendulab.taylor import simulate
+from pendulab.jobs import coursework, problems
+from pendulab.numerics.group import group_length
+from pendulab.numerics.interpolation import inverse_cubic
+from pendulab.numerics.lsq import least_squares
+from pendulab.numerics.period import agm_period
+from pendulab.numerics.simulation import simulate
 from reference import G
 
 P = coursework.load()
@@ -293,7 +293,7 @@ def test_every_comment_has_a_translation():
 def test_problem4_on_the_programs_data_is_the_engines():
     """The report hands the program's Taylor data to the engine (no compiled kernel): the
     same doubles, so the same fit; data of the wrong length is refused."""
-    from pendulab.errors import InputError
+    from pendulab.core.errors import InputError
 
     p4 = P["problem4.py"]
     t, z1, z2 = P["taylor.py"].taylor(p4.L, p4.ALPHA, p4.H, 4)
@@ -333,7 +333,7 @@ def test_program_cholesky_is_lapacks_and_refuses_what_is_not_positive_definite(n
     assert np.allclose(low, np.linalg.cholesky(a), rtol=1e-14 * cond, atol=1e-15)
     assert np.array_equal(np.triu(low, 1), np.zeros((n, n)))
     r = rng.standard_normal(n)
-    from pendulab.lsq import cholesky_solve
+    from pendulab.numerics.lsq import cholesky_solve
 
     c = cholesky_solve(a, r)
     expected = scipy.linalg.cho_solve(scipy.linalg.cho_factor(a, lower=True), r)

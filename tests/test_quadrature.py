@@ -7,10 +7,10 @@ import numpy as np
 import pytest
 from scipy.integrate import fixed_quad, quad
 
-from pendulab.errors import InputError
-from pendulab.period import agm_period, period_mp
-from pendulab.problems import problem5
-from pendulab.quadrature import (
+from pendulab.core.errors import InputError
+from pendulab.jobs.problems import problem5
+from pendulab.numerics.period import agm_period, period_mp
+from pendulab.numerics.quadrature import (
     GAUSS3,
     Rule,
     composite,
@@ -145,7 +145,7 @@ def test_problem5_table():
         assert row.substitution_error < 1e-6 or row.n == 1
     assert [round(row.rate, 2) for row in r.rows[1:]] == [0.5] * 5
     assert r.single == r.rows[0].estimate and r.composite10 == r.rows[1].estimate
-    from pendulab.words import sentence  # 5(a) in the words the CLI prints
+    from pendulab.report.words import sentence  # 5(a) in the words the CLI prints
 
     assert "infinite" in sentence("p5.answer_5a")
 
@@ -170,7 +170,7 @@ def test_n_beyond_the_cap_is_refused_before_any_work(n):
 
 
 def test_a_table_of_more_than_2e7_panels_in_all_is_refused():
-    from pendulab.quadrature import convergence_table
+    from pendulab.numerics.quadrature import convergence_table
 
     with pytest.raises(InputError, match=r"summing to at most 2e\+07 \(these sum to 3e\+07\)"):
         convergence_table(L, ALPHA, [10**7] * 3, 6.2)
@@ -291,7 +291,7 @@ def test_equal_panels_converge_once_they_resolve_the_peak():
 
 
 def test_composite_graded_on_a_peak_of_known_integral():
-    from pendulab.quadrature import composite_graded
+    from pendulab.numerics.quadrature import composite_graded
 
     for eps in (1e-3, 1e-9, 1e-15):
         f = lambda x, e=eps: 1 / np.sqrt(e * e + x * x)  # noqa: E731

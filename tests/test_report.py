@@ -15,8 +15,8 @@ import mpmath
 import pypdf
 import pytest
 
-from pendulab import problems
 from pendulab.cli import main
+from pendulab.jobs import problems
 from pendulab.report import build_report, load_catalogue
 from reference import G_TEXT, G
 
@@ -135,7 +135,7 @@ def test_problem4_numbers(built):
 
 def test_problem5_numbers(built):
     text = pdf_text(built["en"])
-    from pendulab.coursework import load
+    from pendulab.jobs.coursework import load
 
     p5 = load()["problem5.py"]
     table = p5.table(load()["agm.py"].t_hat(3.5, 4 * math.pi / 5))
@@ -151,7 +151,7 @@ def test_problem5_numbers(built):
 def test_agm_section(built):
     from decimal import ROUND_FLOOR, Decimal
 
-    from pendulab.period import fixed_iterations_limit
+    from pendulab.numerics.period import fixed_iterations_limit
 
     # The limit to 15 digits, rounded down: every amplitude the text allows is within it.
     shown = Decimal(fixed_iterations_limit()).quantize(Decimal("1e-14"), rounding=ROUND_FLOOR)
@@ -162,7 +162,7 @@ def test_agm_section(built):
 def test_appendix_prints_every_program_whole_unwrapped(built, key):
     """Every line of every program, each on one line of the PDF, in the report's language,
     after its header (the file and how to run it); the code at 9 pt."""
-    from pendulab import coursework
+    from pendulab.jobs import coursework
 
     lang = "pt" if key in ("pt", "other") else "en"
     text = pdf_text(built[key])
@@ -186,7 +186,7 @@ def test_appendix_prints_every_program_whole_unwrapped(built, key):
 def test_report_numbers_come_from_the_programs(tmp_path):
     """The sections call the coursework programs, and print what they return: a program
     made to answer differently changes the report."""
-    from pendulab.coursework import load
+    from pendulab.jobs.coursework import load
     from pendulab.report.markup import num, sci
 
     p = load()
@@ -430,7 +430,7 @@ def _with_t_hat(t_hat):
 
 def _forced_docs(tmp_path, lang):
     """The branches no real group reaches, each forced by changing the program's threshold behind it."""
-    from pendulab.coursework import load
+    from pendulab.jobs.coursework import load
 
     p = load()
     docs = {
@@ -499,7 +499,7 @@ def test_section0_sentences_are_true(tmp_path, lang):
     from flint import arb, ctx
 
     import plain_pendulum as plain
-    from pendulab.period import period_ball
+    from pendulab.numerics.period import period_ball
     from pendulab.report.builder import section_data
 
     doc = section_data(EXAMPLE, lang, tmp_path, only=["exact period"])

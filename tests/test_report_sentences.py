@@ -18,9 +18,9 @@ from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 
 import plain_pendulum as plain
-from pendulab import problems
-from pendulab.errors import InputError
-from pendulab.inputs import MAX_NAME, names
+from pendulab.core.errors import InputError
+from pendulab.core.inputs import MAX_NAME, names
+from pendulab.jobs import problems
 from pendulab.report import load_catalogue
 from pendulab.report.markup import distinct, sci_beside, sci_up, up
 from reference import G
@@ -231,7 +231,7 @@ def test_every_reference_is_cited(lang):
 def test_every_routine_is_justified(lang):
     import inspect
 
-    from pendulab import group, lsq, motion, period
+    from pendulab.numerics import group, lsq, motion, period
 
     intro = " ".join(load_catalogue(lang)["intro"])
     for routine in ("scipy.special.ellipkm1", "python-flint", "mpmath", "`decimal`", "numpy.linalg.cholesky",
@@ -239,7 +239,7 @@ def test_every_routine_is_justified(lang):
         assert routine in intro, routine
     # The uses the text states are in the code: l by mpmath, K by ellipkm1, the digits by Arb,
     # Cholesky in the program of problem 4.
-    from pendulab.coursework import source
+    from pendulab.jobs.coursework import source
 
     assert "mpmath" in inspect.getsource(group.group_length) and "mpmath" in source("length.py")
     assert "def cholesky" in source("problem4.py") and "np.linalg.cholesky" in inspect.getsource(lsq.definiteness)

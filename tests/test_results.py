@@ -8,13 +8,13 @@ import sys
 import numpy as np
 import pytest
 
-from pendulab.crossing import estimate_period
-from pendulab.errors import MissingExtraError
-from pendulab.interpolation import inverse_cubic
-from pendulab.motion import global_error
-from pendulab.problems import problem2, problem5
-from pendulab.results import Result, to_frame
-from pendulab.taylor import simulate
+from pendulab.core.errors import MissingExtraError
+from pendulab.jobs.problems import problem2, problem5
+from pendulab.numerics.crossing import estimate_period
+from pendulab.numerics.interpolation import inverse_cubic
+from pendulab.numerics.motion import global_error
+from pendulab.numerics.results import Result, to_frame
+from pendulab.numerics.simulation import simulate
 
 
 @pytest.fixture(scope="module")
@@ -47,7 +47,8 @@ def test_the_callers_array_keeps_its_flags():
 
 
 def test_every_result_class_is_a_frozen_identity_dataclass():
-    for name in ("approximations", "group", "lsq", "newton", "problems", "quadrature", "uncertainty"):
+    for name in ("numerics.approximations", "numerics.group", "numerics.lsq", "numerics.newton", "jobs.problems",
+                 "numerics.quadrature", "numerics.uncertainty"):
         importlib.import_module(f"pendulab.{name}")  # every result class is defined
     classes = list(_subclasses(Result))
     assert len(classes) >= 15
@@ -111,8 +112,8 @@ def test_html_shows_every_field_and_floats_in_full():
     for f in dataclasses.fields(p2):
         assert f"<th style='text-align:left'>{f.name}</th>" in page
     assert f"<code>{p2.alpha!r}</code>" in page  # the shortest repr: every digit of the double
-    # The result carries the decision; its words come from the catalogues (pendulab.words).
-    from pendulab.words import sentence
+    # The result carries the decision; its words come from the catalogues (pendulab.report.words).
+    from pendulab.report.words import sentence
 
     words = sentence("p2.justification." + ("positive" if p2.curvature_positive else "negative"))
     assert "curvature_positive" in page and html.escape(words) not in page
@@ -120,7 +121,7 @@ def test_html_shows_every_field_and_floats_in_full():
 
 
 def test_a_sweep_is_a_table():
-    from pendulab.sweep import sweep
+    from pendulab.jobs.sweep import sweep
 
     r = sweep(np.radians([30.0, 60.0]), [1e-3], ["taylor2"])
     assert not r["cubic"].flags.writeable

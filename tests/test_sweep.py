@@ -11,11 +11,11 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 
 from pendulab.cli import main
-from pendulab.crossing import estimate_period
-from pendulab.errors import InputError
-from pendulab.interpolation import inverse_cubic, inverse_cubic_rows
-from pendulab.period import agm_period
-from pendulab.sweep import sweep
+from pendulab.core.errors import InputError
+from pendulab.jobs.sweep import sweep
+from pendulab.numerics.crossing import estimate_period
+from pendulab.numerics.interpolation import inverse_cubic, inverse_cubic_rows
+from pendulab.numerics.period import agm_period
 from reference import G
 
 AMPLITUDES = np.radians([5.0, 45.0, 120.0, 170.0, 179.0])
@@ -115,7 +115,7 @@ def test_dask_cluster_gives_the_same_result():
 
 
 def test_unreachable_scheduler_is_one_clear_error(monkeypatch):
-    monkeypatch.setattr("pendulab.sweep.cluster.CONNECT_TIMEOUT", 1)
+    monkeypatch.setattr("pendulab.jobs.sweep.cluster.CONNECT_TIMEOUT", 1)
     with pytest.raises(InputError, match="scheduler"):
         sweep([0.5], [1e-2], scheduler="tcp://127.0.0.1:9")  # port 9 (discard): nothing listens
 
@@ -170,7 +170,7 @@ def test_cli_sweep_bad_input(args, needle, capsys):
 @pytest.mark.parametrize("threads", [1, 2, 3])
 @pytest.mark.parametrize("code", [0, 1])  # taylor2 (lock-step lanes), rk4 (serial kernel)
 def test_threads_give_one_thread_bit_for_bit(threads, code):
-    from pendulab.sweep import BLOCK, first_returns, first_returns_lanes, first_returns_serial
+    from pendulab.jobs.sweep import BLOCK, first_returns, first_returns_lanes, first_returns_serial
 
     m = 3 * BLOCK + 5  # blocks of unequal size
     rng = np.random.default_rng(7)
@@ -190,9 +190,9 @@ def test_blocks_run_in_small_pieces_give_one_call_bit_for_bit(monkeypatch, threa
     """Each block of the sweep runs in pieces (so that Ctrl+C stops it between two); with
     pieces of a few hundred steps, each pendulum (n = 0 .. 6000, found or not, over the top
     for (3)) equals the kernels' one call over all the steps, bit for bit."""
-    from pendulab import _kernels
-    from pendulab.sweep import BLOCK, first_returns, first_returns_lanes, first_returns_serial
-    from pendulab.sweep import kernel as sweep_kernel
+    from pendulab.engine import kernels
+    from pendulab.engine import lanes as sweep_kernel
+    from pendulab.jobs.sweep import BLOCK, first_returns, first_returns_lanes, first_returns_serial
 
     rng = np.random.default_rng(11)
     m = 2 * BLOCK + 7
@@ -202,10 +202,10 @@ def test_blocks_run_in_small_pieces_give_one_call_bit_for_bit(monkeypatch, threa
     one = first_returns_lanes(alphas, cs, 1e-2, n) if code == 0 else first_returns_serial(code, order, alphas, cs, 1e-2, n)
     if code != 0:  # the serial searches are the scalar kernel's one call per pendulum
         for i in range(m):
-            ref = _kernels.first_return(_kernels.kernel_code(code, cs[i], 1e-2), order, alphas[i], cs[i], 1e-2, n[i])
+            ref = kernels.first_return(kernels.kernel_code(code, cs[i], 1e-2), order, alphas[i], cs[i], 1e-2, n[i])
             assert (one[0][i], one[1][i]) == ref[:2] and np.array_equal(one[2][i], ref[2]) and np.array_equal(one[3][i], ref[3])
     monkeypatch.setattr(sweep_kernel, "CHUNK_COST", 997)  # lock-step pieces of 997 // 16 steps
-    monkeypatch.setattr(_kernels, "CHUNK_COST", 997)  # the scalar searches' pieces
+    monkeypatch.setattr(kernels, "CHUNK_COST", 997)  # the scalar searches' pieces
     cut = first_returns(code, order, alphas, cs, 1e-2, n, threads=threads)
     for a, b in zip(one, cut, strict=True):
         assert np.array_equal(a, b)
@@ -214,7 +214,7 @@ def test_blocks_run_in_small_pieces_give_one_call_bit_for_bit(monkeypatch, threa
 
 def test_lanes_sincos_within_one_ulp():
     """The lock-step kernel's sine and cosine against mpmath, over the range theta takes."""
-    from pendulab.sweep.kernel import sincos
+    from pendulab.engine.lanes import sincos
 
     xs = np.concatenate([np.random.default_rng(3).uniform(-3.2, 3.2, 3000),
                          [0.0, 1e-300, -1e-8, np.pi / 4, np.pi / 2, 3 * np.pi / 4, np.pi, -np.pi, 3.2]])
@@ -228,7 +228,7 @@ def test_lanes_sincos_within_one_ulp():
 def test_lanes_follow_the_serial_search_in_every_case():
     """Status and j as first_return's for every outcome (found, no return, too early, over
     the top, n = 0 .. 3); the windows agree to rounding."""
-    from pendulab.sweep import first_returns_lanes, first_returns_serial
+    from pendulab.jobs.sweep import first_returns_lanes, first_returns_serial
 
     alphas = np.repeat([0.0, 1e-3, 1.0, 2.5, 3.1, 3.14159], 2 * 3 * 7)
     cs = np.tile(np.repeat(-G / np.array([1.0, 0.02]), 3 * 7), 6)
@@ -251,7 +251,7 @@ def test_lanes_vectorise():
 
     from numba import njit
 
-    from pendulab.sweep.kernel import _lanes
+    from pendulab.engine.lanes import _lanes
 
     if platform.machine() not in ("x86_64", "AMD64"):
         pytest.skip(f"the check reads x86-64 assembly; this machine is {platform.machine()}")
@@ -292,7 +292,7 @@ def test_lanes_estimates_within_the_stated_bound_of_estimate_period():
 def test_tasks_cut_the_pendulums_into_whole_groups_that_hold_the_work(n, block, work):
     """The sweep's tasks: in order, covering every pendulum once, whole groups of ``block``
     (but the last), each the fewest groups whose steps reach ``work`` (or the rest)."""
-    from pendulab.sweep.kernel import tasks
+    from pendulab.engine.lanes import tasks
 
     n = np.array(n, dtype=np.int64)
     cut = tasks(n, block, work)

@@ -6,9 +6,9 @@ import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
-from pendulab import cases
-from pendulab.errors import InputError
-from pendulab.taylor import kept_steps, simulate, step_count, stride_for
+from pendulab.core import cases
+from pendulab.core.errors import InputError
+from pendulab.numerics.simulation import kept_steps, simulate, step_count, stride_for
 from reference import FIGURE3, G
 
 

@@ -8,8 +8,8 @@ import numpy as np
 import pytest
 from uncertainties import ufloat
 
-from pendulab.errors import InputError
-from pendulab.uncertainty import gravity_estimate, round_significant, significant_digits
+from pendulab.core.errors import InputError
+from pendulab.numerics.uncertainty import gravity_estimate, round_significant, significant_digits
 
 L, DL, T, DT = 1.152, 0.003, 2.1536, 2e-4  # problem 1(b): 115.2 cm, 0.3 cm, 2.1536 s, 2e-4 s
 

@@ -16,10 +16,11 @@ from fastapi.testclient import TestClient
 
 import plain_pendulum
 import reference
-from pendulab import methods, taylor
 from pendulab.cli import main
-from pendulab.crossing import estimate_period
-from pendulab.motion import energy, exact_motion
+from pendulab.core import methods
+from pendulab.numerics import simulation
+from pendulab.numerics.crossing import estimate_period
+from pendulab.numerics.motion import energy, exact_motion
 from pendulab.web import create_app, limits, parameters, sampling, views
 from reference import G, ellipk_period
 
@@ -48,7 +49,7 @@ def test_config_lists_the_family_taylor_p(client):
 
 def test_config_lists_the_methods_registered_now(client, monkeypatch):
     body = client.get("/api/config").json()
-    assert [m["name"] for m in body["methods"]] == list(taylor.METHODS)
+    assert [m["name"] for m in body["methods"]] == list(simulation.METHODS)
     assert body["limits"] == {"max_steps": 10**7, "max_points": 20_000, "plot_points": 2000}
     assert body["g_presets"]["earth"] == G
     # A method registered after the app was built shows up, and can be simulated.
@@ -115,7 +116,7 @@ def test_simulate_keeps_every_columns_min_and_max(client):
     body = client.get("/api/simulate", params=q).json()
     assert body["n_steps"] == 100_000 and body["columns"] == 1000
     assert body["thinning"] == "min/max per column" and body["points"] <= 2000
-    full = taylor.simulate(3.5, 0.8 * math.pi, 1e-4, 10.0)
+    full = simulation.simulate(3.5, 0.8 * math.pi, 1e-4, 10.0)
     idx = np.rint(np.array(body["t"]) / 1e-4).astype(int)
     assert np.all(np.diff(idx) > 0) and idx[0] == 0
     assert body["theta"] == full.theta[idx].tolist() and body["omega"] == full.omega[idx].tolist()
@@ -136,7 +137,7 @@ def test_long_run_plots_keep_the_shape():
     body = views.simulate_view(p)
     alpha = body["input"]["amplitude"]  # 30 deg exactly, rounded once: may differ from math.radians(30)
     assert alpha == pytest.approx(math.pi / 6, rel=1e-15)
-    full = taylor.simulate(1, alpha, 1e-3, 2000.0)
+    full = simulation.simulate(1, alpha, 1e-3, 2000.0)
     theta = np.array(body["theta"])
     t = np.array(body["t"])
     # Columns of the plot (here 400 pixels): wherever the trajectory has a local max or min.
@@ -161,7 +162,7 @@ def test_long_run_plots_keep_the_shape():
 
 
 def test_exact_overlay_error_and_energy_are_the_librarys(client):
-    from pendulab.motion import energy, exact_motion
+    from pendulab.numerics.motion import energy, exact_motion
 
     q = {"length": "1", "amplitude": "pi/4", "step": "1e-2", "t_max": "30", "method": "taylor2"}
     body = client.get("/api/simulate", params=q).json()
@@ -173,7 +174,7 @@ def test_exact_overlay_error_and_energy_are_the_librarys(client):
         i = np.argmin(abs(ex_t - k * T / 2))
         assert ex_t[i] == pytest.approx(k * T / 2, rel=1e-12) and ex_th[i] == (-1) ** k * alpha
     assert np.allclose(ex_th, exact_motion(1, alpha, ex_t).theta, rtol=0, atol=1e-12)
-    full = taylor.simulate(1, alpha, 1e-2, 30.0)
+    full = simulation.simulate(1, alpha, 1e-2, 30.0)
     et = np.array(body["error"]["t"])
     ei = np.rint(et / 1e-2).astype(int)
     assert np.allclose(body["error"]["theta"], full.theta[ei] - exact_motion(1, alpha, et).theta, rtol=0, atol=1e-14)
@@ -189,7 +190,7 @@ def test_blown_up_simulation_is_flagged(client):
     flags = body["flags"]
     assert not flags["trustworthy"] and flags["left_oscillation_t"] > 0
     assert any("over the top" in w for w in flags["warnings"])
-    full = taylor.simulate(1e-5, body["input"]["amplitude"], 1e-3, 20.0)
+    full = simulation.simulate(1e-5, body["input"]["amplitude"], 1e-3, 20.0)
     first = int(np.argmax(np.abs(full.theta) >= math.pi))
     assert flags["left_oscillation_t"] == pytest.approx(first * 1e-3)
     # Energy drift, the other kind: Euler's method gains energy every swing.
@@ -219,7 +220,7 @@ def test_simulate_without_period_says_why(client):
     ({"length": "1", "amplitude": "1", "step": "0.01", "t_max": "2", "omega0": "1"}, "not_run", "release at rest"),
 ])
 def test_no_estimate_has_a_status_and_a_reason(client, query, status, words):
-    from pendulab.crossing import search_period
+    from pendulab.numerics.crossing import search_period
 
     period = client.get("/api/simulate", params=query).json()["period"]
     assert (period["estimate"], period["status"]) == (None, status) and words in period["reason"]
@@ -255,13 +256,13 @@ def test_simulate_blow_up_is_valid_json_and_flagged(client):
     r = client.get("/api/simulate", params={"length": "1", "amplitude": "3", "step": "1", "t_max": "2000", "points": "3000"})
     assert r.status_code == 200
     body = r.json()
-    full = taylor.simulate(1, 3, 1, 2000)
+    full = simulation.simulate(1, 3, 1, 2000)
     first_bad = int(np.argmax(~np.isfinite(full.theta) | ~np.isfinite(full.omega)))
     assert first_bad > 0 and body["flags"]["nonfinite_t"] == first_bad
     assert body["theta"][0] == 3.0 and "blew up" in body["flags"]["warnings"][0]
 
 
-@pytest.mark.parametrize("method", list(taylor.METHODS))
+@pytest.mark.parametrize("method", list(simulation.METHODS))
 def test_every_method_simulates(client, method):
     body = client.get("/api/simulate", params=P5_QUERY | {"method": method}).json()
     assert body["input"]["method"] == method
@@ -280,7 +281,7 @@ def test_trajectory_csv_is_the_full_trajectory(client):
         row = rows[int(round(t_ref / 0.1))]
         assert row[1:] == pytest.approx([z1, z2], rel=5e-12, abs=1e-12)
     # Full precision: the shortest repr of each double reads back to the same double.
-    full = taylor.simulate(1, math.pi / 4, 0.1, 2.1)
+    full = simulation.simulate(1, math.pi / 4, 0.1, 2.1)
     assert rows[:, 1].tolist() == full.theta.tolist()
 
 
@@ -422,7 +423,7 @@ def test_step_not_below_t_max(client, endpoint):
 @pytest.mark.parametrize("bad", ["rk5", "TAYLOR2", "taylor2; drop", "x" * 100])
 def test_unknown_method(client, endpoint, bad):
     err = assert_422(client.get(endpoint, params=P5_QUERY | {"method": bad}), "method")
-    assert all(name in err["allowed"] for name in taylor.METHODS) or len(bad) > 64
+    assert all(name in err["allowed"] for name in simulation.METHODS) or len(bad) > 64
     if len(bad) <= 40:  # as typed, as every other field echoes it (was a repr, 'rk5')
         assert err["value"] == bad and err["message"].startswith(f"method = {bad} is not allowed")
 
@@ -526,7 +527,7 @@ def test_csv_streams_in_blocks():
     assert len(rest) == math.ceil(50_000 / views.CSV_BLOCK)
     assert max(b.count("\n") for b in rest) == views.CSV_BLOCK
     rows = np.array([[float(x) for x in line.split(",")] for line in (first + "".join(rest)).splitlines()[1:]])
-    full = taylor.simulate(1, 1, 1e-3, 50.0)
+    full = simulation.simulate(1, 1, 1e-3, 50.0)
     assert rows[:, 1].tolist() == full.theta.tolist() and rows[:, 2].tolist() == full.omega.tolist()
     assert np.array_equal(rows[:, 0], full.t)
 
@@ -563,7 +564,7 @@ def test_flags_tell_a_bounded_oscillation_from_a_drift_and_a_phase_error(client)
     # Verlet at h = 0.2 s: the energy oscillates by about 2 % and does not grow (symplectic).
     q = {"length": "3.5", "amplitude": "144deg", "step": "0.2", "t_max": "20", "method": "verlet"}
     flags = client.get("/api/simulate", params=q).json()["flags"]
-    full = taylor.simulate(3.5, 0.8 * math.pi, 0.2, 20.0, method="verlet")
+    full = simulation.simulate(3.5, 0.8 * math.pi, 0.2, 20.0, method="verlet")
     drift = np.abs(energy(full.theta, full.omega, 3.5) / G + math.cos(0.8 * math.pi)) / (1 - math.cos(0.8 * math.pi))
     quarter = len(drift) // 4
     assert drift.max() > 0.01 and drift[-quarter:].max() < 1.5 * drift[:quarter].max()  # bounded, by the reference
@@ -576,7 +577,7 @@ def test_flags_tell_a_bounded_oscillation_from_a_drift_and_a_phase_error(client)
     # taylor2 at h = 0.01 over 2000 s: the energy barely moves, the phase is radians off.
     q = {"length": "3.5", "amplitude": "144deg", "step": "1e-2", "t_max": "2000"}
     body = client.get("/api/simulate", params=q).json()
-    full = taylor.simulate(3.5, 0.8 * math.pi, 1e-2, 2000.0)
+    full = simulation.simulate(3.5, 0.8 * math.pi, 1e-2, 2000.0)
     ref = np.max(np.abs(full.theta - exact_motion(3.5, 0.8 * math.pi, full.t).theta))
     assert ref > 1 and body["flags"]["phase_error_max"] <= ref and body["flags"]["phase_error_max"] > 0.9 * ref
     assert [n["kind"] for n in body["flags"]["notes"]] == ["phase"] and not body["flags"]["trustworthy"]
@@ -613,7 +614,7 @@ def test_csv_with_every_column(client):
     lines = client.get("/api/trajectory.csv", params=q).text.splitlines()
     assert lines[0].split(",") == ["t_s", "theta_rad", "omega_rad_per_s", "theta_exact_rad", "omega_exact_rad_per_s",
                                    "theta_error_rad", "energy_error_mgl"]
-    full = taylor.simulate(1, math.pi / 4, 0.1, 2.1)
+    full = simulation.simulate(1, math.pi / 4, 0.1, 2.1)
     rows = np.array([[float(x) for x in line.split(",")] for line in lines[1:]])
     assert np.array_equal(rows[:, 1], full.theta) and np.array_equal(rows[:, 2], full.omega)
     assert np.array_equal(rows[:, 5], rows[:, 1] - rows[:, 3])
@@ -631,7 +632,7 @@ def test_a_launch_is_simulated_and_flagged_against_its_own_exact_motion(client):
     assert body["flags"]["left_oscillation_t"] is None and body["flags"]["trustworthy"]  # over the top is right here
     assert body["period"]["estimate"] is None and "release at rest" in body["period"]["reason"]
     # The simulation from (alpha, omega0), bit for bit the library's step from that state.
-    full = taylor.simulate(1, math.radians(17), 1e-3, 20.0)  # from rest: a different motion
+    full = simulation.simulate(1, math.radians(17), 1e-3, 20.0)  # from rest: a different motion
     assert body["theta"][-1] > 2 * math.pi * 15 and abs(full.theta).max() < math.pi
     lines = client.get("/api/trajectory.csv", params=q | {"columns": "all", "points": "201"}).text.splitlines()
     rows = np.array([[float(x) for x in line.split(",")] for line in lines[1:]])

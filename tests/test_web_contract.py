@@ -51,10 +51,10 @@ def test_the_page_reads_only_endpoints_with_a_published_answer(schema):
 
 def test_published_keys_use_the_glossarys_names(schema):
     """One name per quantity (docs/glossary.md): the period answer's keys are the library's
-    (:class:`pendulab.period.Periods`) and "exact" names only the exact motion, never a period."""
+    (:class:`pendulab.numerics.period.Periods`) and "exact" names only the exact motion, never a period."""
     from dataclasses import fields
 
-    from pendulab.period import Periods
+    from pendulab.numerics.period import Periods
 
     props = {name: set(m.get("properties", {})) for name, m in schema["components"]["schemas"].items()}
     assert props["PeriodAnswer"] - {"amplitude_deg"} <= {f.name for f in fields(Periods)}

@@ -22,8 +22,8 @@ from playwright.sync_api import TimeoutError as PlaywrightTimeoutError
 from playwright.sync_api import sync_playwright
 
 from _browser import find_chromium
-from pendulab import taylor
-from pendulab.inputs import parse_angle
+from pendulab.core.inputs import parse_angle
+from pendulab.numerics import simulation
 from pendulab.web.child import serve_in_child
 from reference import ellipk_period
 
@@ -154,7 +154,7 @@ def test_every_method_is_offered(page, server):
     page.wait_for_function("document.querySelectorAll('#method option').length > 0")
     offered = page.eval_on_selector_all("#method option", "os => os.map(o => o.value)")
     # The registry: its named methods, then taylor:P for every order, Euler's method (taylor:1) first.
-    assert offered == list(taylor.METHODS) + [f"taylor:{p}" for p in range(1, 31)]
+    assert offered == list(simulation.METHODS) + [f"taylor:{p}" for p in range(1, 31)]
     assert "Euler" in page.locator("#method option[value='taylor:1']").text_content()
     assert page.eval_on_selector_all("#method2 option", "os => os.map(o => o.value)") == [""] + offered
 
@@ -293,7 +293,7 @@ def test_long_run_plots_keep_their_shape(browser, server):
     context, pg = open_page(browser, server, LONG_RUN)
     try:
         alpha = math.radians(30)
-        full = taylor.simulate(1, alpha, 1e-3, 2000.0)
+        full = simulation.simulate(1, alpha, 1e-3, 2000.0)
         # theta(t): in every pixel column holding a turn, the drawn curve reaches the turn's
         # value (+-alpha within 0.1 % for taylor2 at this step) within 1 %.
         d = drawn(pg, "plot-theta")
@@ -363,7 +363,7 @@ def test_the_animation_shows_the_true_state_at_its_time(browser, server):
     try:
         t, shown = clock(pg)
         assert t == 1.0 and pg.locator("#play").text_content() == "Play"
-        full = taylor.simulate(1, math.radians(30), 1e-3, 2.0)
+        full = simulation.simulate(1, math.radians(30), 1e-3, 2.0)
         assert shown == pytest.approx(math.degrees(full.theta[1000]), abs=0.01)
         # The time cursor: the same time on theta(t), the error and energy plots, the same state on the phase portrait.
         for plot in ("plot-theta", "plot-error", "plot-energy"):
@@ -865,7 +865,7 @@ def test_zoom_fetches_finer_data(browser, server):
         d = drawn(pg, "plot-theta")
         t, theta = np.array(d["x"], dtype=float), np.array(d["y"], dtype=float)
         # The page's 30 deg is the double nearest pi/6 (math.radians(30) is one ulp below it).
-        full = taylor.simulate(1, float(parse_angle("amplitude", "30deg")), 1e-3, 20.0)
+        full = simulation.simulate(1, float(parse_angle("amplitude", "30deg")), 1e-3, 20.0)
         steps = np.rint(t / 1e-3).astype(int)
         assert np.array_equal(theta, full.theta[steps])  # the simulation's values at those steps, bit for bit
         assert d["xr"] == pytest.approx([0, 20])  # the view stays where it was zoomed

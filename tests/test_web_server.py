@@ -24,10 +24,10 @@ from fastapi.testclient import TestClient
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
-from pendulab._interrupt import Stopped, stop_when
 from pendulab.cli import main
-from pendulab.crossing import estimate_period
-from pendulab.methods import cost_per_step
+from pendulab.core.interrupt import Stopped, stop_when
+from pendulab.core.methods import cost_per_step
+from pendulab.numerics.crossing import estimate_period
 from pendulab.web import create_app, limits, parameters, sampling, server
 from pendulab.web.child import free_port, serve_in_child
 from pendulab.web.guard import host_name
@@ -379,8 +379,8 @@ METHOD_NAMES = ["taylor2", "rk4", "verlet"] + [f"taylor:{p}" for p in range(1, 3
 @settings(max_examples=200, deadline=None)
 @given(method=st.sampled_from(METHOD_NAMES), log_step=st.floats(-7, -1), log_t=st.floats(0, 5))
 def test_every_accepted_run_is_within_the_work_limit(method, log_step, log_t):
-    from pendulab.errors import InputError
-    from pendulab.methods import resolve
+    from pendulab.core.errors import InputError
+    from pendulab.core.methods import resolve
 
     q = {"length": "1", "amplitude": "1", "method": method, "step": f"{10 ** log_step:.6g}", "t_max": f"{10 ** log_t:.6g}"}
     try:
@@ -395,8 +395,8 @@ def test_every_accepted_run_is_within_the_work_limit(method, log_step, log_t):
 
 @pytest.mark.parametrize("method", ["taylor2", "rk4", "taylor:30"])
 def test_the_work_limit_is_exact(method):
-    from pendulab.errors import InputError
-    from pendulab.methods import resolve
+    from pendulab.core.errors import InputError
+    from pendulab.core.methods import resolve
 
     most = limits.max_steps(resolve(method))
     q = {"length": "1", "amplitude": "1", "method": method, "step": "1e-4"}

@@ -1,6 +1,6 @@
-"""The explorer's streamed pass (``web.stream``) against a plain reference over a stored trajectory.
+"""The explorer's streamed pass (``engine.fold``) against a plain reference over a stored trajectory.
 
-The reference stores every state (``taylor.simulate``, or the driver from a launched
+The reference stores every state (``simulation.simulate``, or the driver from a launched
 state) and reduces it the obvious way, column by column with numpy; the pass must keep
 the same steps and the same values, bit for bit, however the run is cut into pieces and
 buffers.
@@ -18,11 +18,12 @@ import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
-from pendulab import _kernels, taylor
-from pendulab._interrupt import CHUNK_COST
-from pendulab._kernels import TAYLOR2_FAST, drive
-from pendulab.taylor import method_code
-from pendulab.web import parameters, sampling, stream
+from pendulab.core.interrupt import CHUNK_COST
+from pendulab.engine import fold, kernels
+from pendulab.engine.kernels import TAYLOR2_FAST, drive
+from pendulab.numerics import simulation
+from pendulab.numerics.simulation import method_code
+from pendulab.web import parameters, sampling
 
 
 def reference(theta, omega, nb, samples, alpha, omega0, c):
@@ -60,8 +61,8 @@ def reference(theta, omega, nb, samples, alpha, omega0, c):
     return out
 
 
-def assert_same(rec: stream.Record, ref) -> None:
-    s = stream
+def assert_same(rec: fold.Record, ref) -> None:
+    s = fold
     got = {"i_lo": rec.step[s.I_LO], "i_hi": rec.step[s.I_HI], "e_i_lo": rec.step[s.E_I_LO], "e_i_hi": rec.step[s.E_I_HI]}
     for k, v in got.items():
         assert np.array_equal(v, ref[k]), k
@@ -90,7 +91,7 @@ CASES = [
     ("taylor:4", 3.5, 4 * math.pi / 5, 1e-2, 9.0, 901, 10**6),
     ("taylor:1", 1.0, 0.5, 1e-2, 30.0, 3001, 500),  # Euler: the energy grows, over the top
     ("taylor2", 1.0, 3.0, 0.5, 20.0, 41, 7),  # over the top
-    ("taylor2", 1.0, 3.0, 1.0, 2000.0, 150, 2 * stream.BUFFER + 3),  # blows up: inf, then NaN
+    ("taylor2", 1.0, 3.0, 1.0, 2000.0, 150, 2 * fold.BUFFER + 3),  # blows up: inf, then NaN
     ("taylor2", 1.0, 1.0, 0.1, 2.0, 500, 5),  # more columns than states: some stay empty
     ("rk4", 1.0, 1.0, 0.5, 1.0, 3, 1),  # two steps
     ("taylor2", 1.0, 0.0, 0.01, 3.0, 37, 100),  # at rest: every value ties, first and last kept
@@ -100,18 +101,18 @@ CASES = [
 @pytest.mark.parametrize("method, length, alpha, h, t_max, nb, size", CASES)
 def test_the_pass_keeps_what_the_stored_run_has(method, length, alpha, h, t_max, nb, size):
     g = 9.80665
-    traj = taylor.simulate(length, alpha, h, t_max, g=g, method=method)
+    traj = simulation.simulate(length, alpha, h, t_max, g=g, method=method)
     n = len(traj.theta) - 1
     samples = samples_of(n, n)
     code, order = method_code(method)
     c = -g / length
-    rec = stream.run(code, order, alpha, 0.0, c, h, n, nb, samples, size)
+    rec = fold.run(code, order, alpha, 0.0, c, h, n, nb, samples, size)
     assert_same(rec, reference(traj.theta, traj.omega, nb, samples, alpha, 0.0, c))
 
 
 def test_the_blow_up_case_has_every_kind_of_value():
     # The case above that blows up reaches +-inf and NaN both, with finite steps before.
-    th = taylor.simulate(1.0, 3.0, 1.0, 2000.0).theta
+    th = simulation.simulate(1.0, 3.0, 1.0, 2000.0).theta
     assert np.isinf(th).any() and np.isnan(th).any() and np.isfinite(th[:5]).all()
 
 
@@ -124,25 +125,25 @@ def test_a_launched_pass(method, omega0):
     th[0], om[0] = alpha, omega0
     drive(code, order, alpha, omega0, c, h, 0, n, 1, n, th[1:], om[1:])
     samples = samples_of(n, 1)
-    rec = stream.run(code, order, alpha, omega0, c, h, n, 400, samples, 5000)
+    rec = fold.run(code, order, alpha, omega0, c, h, n, 400, samples, 5000)
     assert_same(rec, reference(th, om, 400, samples, alpha, omega0, c))
 
 
 @settings(max_examples=25, deadline=None)
-@given(n=st.integers(1, 3 * stream.BUFFER), nb=st.integers(1, 400), size=st.integers(1, 10**5),
+@given(n=st.integers(1, 3 * fold.BUFFER), nb=st.integers(1, 400), size=st.integers(1, 10**5),
        alpha=st.sampled_from([0.0, 1e-3, 1.0, 3.0, 3.14159]), h=st.sampled_from([1e-3, 0.05, 0.9]))
 def test_any_cut_keeps_the_same(n, nb, size, alpha, h):
-    traj = taylor.simulate(9.80665, alpha, h, (n + 0.25) * h, g=9.80665)  # c = -g/l = -1
+    traj = simulation.simulate(9.80665, alpha, h, (n + 0.25) * h, g=9.80665)  # c = -g/l = -1
     n = len(traj.theta) - 1  # Round(t_max/h), as the web counts it
     samples = samples_of(n, size)
-    rec = stream.run(*method_code("taylor2"), alpha, 0.0, -1.0, h, n, nb, samples, size)
+    rec = fold.run(*method_code("taylor2"), alpha, 0.0, -1.0, h, n, nb, samples, size)
     assert_same(rec, reference(traj.theta, traj.omega, nb, samples, alpha, 0.0, -1.0))
 
 
 def _chosen(monkeypatch, owner, force_literal=False):
     """Record the kernel code each call of ``owner.kernel_code`` gives (or force the literal one)."""
     seen = []
-    real = _kernels.kernel_code
+    real = kernels.kernel_code
 
     def spy(method, c, h):
         seen.append(method if force_literal else real(method, c, h))
@@ -159,11 +160,11 @@ def test_a_fine_pass_takes_the_fast_step_and_keeps_the_literal_values(monkeypatc
     c = -g / length
     code, order = method_code("taylor2")
     samples = samples_of(n, 7)
-    seen = _chosen(monkeypatch, stream)
-    fast = stream.run(code, order, alpha, 0.0, c, h, n, 300, samples, 70_001)
+    seen = _chosen(monkeypatch, fold)
+    fast = fold.run(code, order, alpha, 0.0, c, h, n, 300, samples, 70_001)
     assert seen == [TAYLOR2_FAST]
-    seen = _chosen(monkeypatch, stream, force_literal=True)
-    literal = stream.run(code, order, alpha, 0.0, c, h, n, 300, samples, 70_001)
+    seen = _chosen(monkeypatch, fold, force_literal=True)
+    literal = fold.run(code, order, alpha, 0.0, c, h, n, 300, samples, 70_001)
     assert seen == [code]
     for a, b in ((fast.value, literal.value), (fast.step, literal.step), (fast.s_theta, literal.s_theta),
                  (fast.s_omega, literal.s_omega), (fast.where, literal.where)):
@@ -173,7 +174,7 @@ def test_a_fine_pass_takes_the_fast_step_and_keeps_the_literal_values(monkeypatc
     p = parameters.simulation({"length": str(length), "amplitude": "4pi/5", "step": "1e-6", "t_max": "0.3"})
     text = {}
     for force in (False, True):
-        seen = _chosen(monkeypatch, _kernels, force_literal=force)
+        seen = _chosen(monkeypatch, kernels, force_literal=force)
         text[force] = "".join(views.csv_blocks(dict(p) | {"columns": "state"}, 5000))
         assert seen == [code if force else TAYLOR2_FAST]
     assert text[False] == text[True] and len(text[False].splitlines()) > 4000
@@ -183,7 +184,7 @@ def test_simulate_arrays_draws_the_reference_columns():
     # The web's pass end to end: the kept steps and values are the reference's, in time order.
     q = parameters.simulation({"length": "1", "amplitude": "3", "step": "0.5", "t_max": "20"})
     sim = sampling.simulate_arrays(q, 30)
-    traj = taylor.simulate(1.0, 3.0, 0.5, 20.0)
+    traj = simulation.simulate(1.0, 3.0, 0.5, 20.0)
     ref = reference(traj.theta, traj.omega, sim["columns"], np.arange(41), 3.0, 0.0, -9.80665)
     idx = np.unique(np.r_[ref["i_lo"], ref["i_hi"]][np.r_[ref["i_lo"], ref["i_hi"]] >= 0])
     assert np.array_equal(sim["idx"], idx)
@@ -200,6 +201,6 @@ def test_ctrl_c_stops_the_pass_between_pieces():
     t0 = time.perf_counter()
     timer.start()
     with pytest.raises(KeyboardInterrupt):
-        stream.run(code, order, 1.0, 0.0, -9.80665, 1e-5, n, 100, np.array([0, n]), CHUNK_COST)
+        fold.run(code, order, 1.0, 0.0, -9.80665, 1e-5, n, 100, np.array([0, n]), CHUNK_COST)
     assert time.perf_counter() - t0 < 1.5
     timer.join()

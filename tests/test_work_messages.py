@@ -12,13 +12,13 @@ import pytest
 from hypothesis import example, given, settings
 from hypothesis import strategies as st
 
-from pendulab import _validate as v
-from pendulab.crossing import estimate_period
-from pendulab.errors import InputError
-from pendulab.methods import resolve
-from pendulab.sweep import sweep
-from pendulab.taylor import MAX_STEPS, simulate
-from pendulab.uncertainty import gravity_estimate
+from pendulab.core import validate as v
+from pendulab.core.errors import InputError
+from pendulab.core.methods import resolve
+from pendulab.jobs.sweep import sweep
+from pendulab.numerics.crossing import estimate_period
+from pendulab.numerics.simulation import MAX_STEPS, simulate
+from pendulab.numerics.uncertainty import gravity_estimate
 from pendulab.web import limits
 
 

@@ -10,38 +10,38 @@ Plots are in :mod:`pendulab.plots`.
 """
 from __future__ import annotations
 
-from ._extras import lazy
-from ._version import __version__
-from .errors import InputError, MissingExtraError, NumericalError, PendulabError
+from .core.errors import InputError, MissingExtraError, NumericalError, PendulabError
+from .core.extras import lazy
+from .core.version import __version__
 
 # ``typing`` is left unimported: its milliseconds come before the command line's entry point
 # handles Ctrl+C (type checkers read the name TYPE_CHECKING as true).
 TYPE_CHECKING = False
 if TYPE_CHECKING:
-    from .approximations import approximation_errors
-    from .crossing import estimate_period
-    from .group import group_length
-    from .motion import exact_motion, global_error
-    from .period import agm_period, period_digits, small_angle_period
-    from .problems import problem1, problem2, problem3, problem4, problem5
-    from .taylor import simulate
+    from .jobs.problems import problem1, problem2, problem3, problem4, problem5
+    from .numerics.approximations import approximation_errors
+    from .numerics.crossing import estimate_period
+    from .numerics.group import group_length
+    from .numerics.motion import exact_motion, global_error
+    from .numerics.period import agm_period, period_digits, small_angle_period
+    from .numerics.simulation import simulate
 
 # name -> the module that defines it, imported on first use (PEP 562).
 _WHERE = {
-    "agm_period": "period",
-    "period_digits": "period",
-    "small_angle_period": "period",
-    "simulate": "taylor",
-    "estimate_period": "crossing",
-    "group_length": "group",
-    "exact_motion": "motion",
-    "global_error": "motion",
-    "approximation_errors": "approximations",
-    "problem1": "problems",
-    "problem2": "problems",
-    "problem3": "problems",
-    "problem4": "problems",
-    "problem5": "problems",
+    "agm_period": "numerics.period",
+    "period_digits": "numerics.period",
+    "small_angle_period": "numerics.period",
+    "simulate": "numerics.simulation",
+    "estimate_period": "numerics.crossing",
+    "group_length": "numerics.group",
+    "exact_motion": "numerics.motion",
+    "global_error": "numerics.motion",
+    "approximation_errors": "numerics.approximations",
+    "problem1": "jobs.problems",
+    "problem2": "jobs.problems",
+    "problem3": "jobs.problems",
+    "problem4": "jobs.problems",
+    "problem5": "jobs.problems",
 }
 
 __all__ = [

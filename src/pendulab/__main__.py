@@ -7,7 +7,7 @@ import sys
 def run() -> int:
     """:func:`pendulab.cli.main`; Ctrl+C or SIGTERM while the command line loads is one line too.
 
-    Every import is inside (``signal`` loads ``enum``, ``_interrupt`` loads ``threading``):
+    Every import is inside (``signal`` loads ``enum``, ``core.interrupt`` loads ``threading``):
     before this function runs, only Python's start-up and the package's first lines (a few
     plain modules, no ``typing``) are left to Python's own handling of Ctrl+C.
     """
@@ -19,14 +19,14 @@ def run() -> int:
     try:
         import signal
 
-        from ._interrupt import terminate_handler
+        from .core.interrupt import terminate_handler
 
         signal.signal(signal.SIGTERM, terminate_handler)  # before the command line's imports: they take a while
         from .cli import main
 
         code = main()
     except KeyboardInterrupt as exc:  # while the command line loaded, or just after the command
-        from ._interrupt import Terminated  # loaded, unless the Ctrl+C came while it loaded
+        from .core.interrupt import Terminated  # loaded, unless the Ctrl+C came while it loaded
 
         term = isinstance(exc, Terminated)
         sys.stderr.write(f"pendulab: {'terminated' if term else 'interrupted'}\n")

@@ -17,9 +17,9 @@ from typing import Any
 
 import click
 
-from .._interrupt import Terminated, terminate_handler
-from .._version import __version__
-from ..errors import InputError, MissingExtraError, PendulabError
+from ..core.errors import InputError, MissingExtraError, PendulabError
+from ..core.interrupt import Terminated, terminate_handler
+from ..core.version import __version__
 from ._common import TYPED, one_line, option_name
 
 # command name -> "module:function", relative to this package.
@@ -208,7 +208,7 @@ def main(argv: list[str] | None = None) -> int:
 def _run(args: list[str], where: str) -> int:
     """:func:`main`'s work: the command, and each way it can end in one line."""
     try:
-        from ..inputs import source_date_epoch
+        from ..core.inputs import source_date_epoch
 
         # Read by matplotlib and Typst deep inside a run: checked first, as any input.
         source_date_epoch(os.environ.get("SOURCE_DATE_EPOCH"))
@@ -303,8 +303,8 @@ _IDENTIFIER = re.compile(r"[a-z]+(?:_[a-z0-9]+)+|[a-z]+[0-9]+")
 def _as_typed(param: click.Parameter | None, value: object, typed: dict[str, tuple[str, bool]]) -> str:
     """``value`` as the person typed it: the parameter's text, or the item of its list
     whose value it is; the library's rendering where neither is found."""
-    from .. import inputs
-    from ..errors import shown_value
+    from ..core import inputs
+    from ..core.errors import shown_value
 
     if isinstance(value, str) or param is None or param.name not in typed:
         return shown_value(value)

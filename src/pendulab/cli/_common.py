@@ -10,10 +10,10 @@ from typing import Any
 
 import click
 
-from .. import inputs
-from ..cases import G_TEXT
-from ..errors import InputError
-from ..exact import Exact
+from ..core import inputs
+from ..core.cases import G_TEXT
+from ..core.errors import InputError
+from ..core.exact import Exact
 
 #: Key of ``click.Context.meta``: parameter name -> (its text, whether the person typed it),
 #: for the messages of library errors (:func:`pendulab.cli.in_cli_words`).
@@ -21,7 +21,7 @@ TYPED = "pendulab.typed"
 
 
 class Parsed(click.ParamType):
-    """A parameter type whose parser is one of :mod:`pendulab.inputs`' functions.
+    """A parameter type whose parser is one of :mod:`pendulab.core.inputs`' functions.
 
     ``parse(text)`` returns the value or raises :class:`InputError`; the message then
     names the option as the command spells it (``--t-max``), the text and the range.
@@ -140,8 +140,8 @@ def fmt(x: float, digits: int = 15) -> str:
 
 def check_plot_path(name: str, path: str) -> None:
     """Before the work: ``path`` can be written and matplotlib (``pendulab[report]``) is there."""
-    from .._atomic import check_writable
-    from .._extras import require
+    from ..core.atomic import check_writable
+    from ..core.extras import require
 
     check_writable(name, path)
     require("matplotlib", f"--{name}")
@@ -152,8 +152,8 @@ def save_plot(draw: Callable, path, size: tuple[float, float] = (6.4, 4.2)) -> N
 
     A ``Figure`` made without pyplot: no backend switch, no figure left in pyplot's list.
     """
-    from .._atomic import save_figure
-    from .._extras import require
+    from ..core.atomic import save_figure
+    from ..core.extras import require
 
     figure = require("matplotlib.figure", "drawing plots")
     fig = figure.Figure(figsize=size, layout="constrained")

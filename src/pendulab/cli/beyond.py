@@ -6,8 +6,8 @@ import sys
 
 import click
 
-from .. import inputs
-from ..errors import InputError
+from ..core import inputs
+from ..core.errors import InputError
 from ._common import (
     DURATION_LIST,
     FIGURE,
@@ -26,8 +26,8 @@ MAX_COUNT = 1_000_000
 
 
 def _methods(text: str) -> list[str]:
-    """Integrator names separated by commas or spaces, each one of :mod:`pendulab.methods`."""
-    from .. import methods
+    """Integrator names separated by commas or spaces, each one of :mod:`pendulab.core.methods`."""
+    from ..core import methods
 
     return [m.name for m in inputs.parse_list("method", text, inputs.method, methods.allowed(), 100)]
 
@@ -63,7 +63,7 @@ def approximations(plot, as_json):
     Small angle, the coursework's (9), Kidd-Fogg, Lima-Arun, Ganley, and the AGM
     truncated after 1, 2, 3 iterations (Carvalhaes-Suppes).
     """
-    from ..approximations import REACH_TOLERANCES, approximation_errors, approximation_table
+    from ..numerics.approximations import REACH_TOLERANCES, approximation_errors, approximation_table
 
     if plot:
         check_plot_path("plot", plot)
@@ -108,8 +108,8 @@ def approximations(plot, as_json):
 @json_option
 def sweep(amplitudes, steps, methods, length, output, plot, scheduler, g, as_json):
     """The period error of each method over a range of amplitudes (many pendulums at once)."""
-    from .._extras import require
-    from ..sweep import sweep as run
+    from ..core.extras import require
+    from ..jobs.sweep import sweep as run
 
     if output:
         require("pyarrow", f"--output {output}")

@@ -3,8 +3,15 @@ from __future__ import annotations
 
 import click
 
-from ..cases import EXAMPLE_GROUP, FIGURE3_STEP, FIGURE3_T_MAX, PROBLEM3_AMPLITUDE, PROBLEM3_STEPS, PROBLEM5
-from ..words import sentence
+from ..core.cases import (
+    EXAMPLE_GROUP,
+    FIGURE3_STEP,
+    FIGURE3_T_MAX,
+    PROBLEM3_AMPLITUDE,
+    PROBLEM3_STEPS,
+    PROBLEM5,
+)
+from ..report.words import sentence
 from ._common import (
     ANGLE,
     DURATION,
@@ -60,13 +67,13 @@ def period(length, amplitude, iterations, digits, g, as_json):
     """
     import math
 
-    from ..exact import Exact
-    from ..period import agm_period, period_digits
+    from ..core.exact import Exact
+    from ..numerics.period import agm_period, period_digits
 
     # Where the amplitude is below pi but its double is not, (8) on doubles has no value.
     on_doubles = float(amplitude) < math.pi
     if as_json:  # the double (8) and the period as written are computed where they are shown
-        from ..period import periods
+        from ..numerics.period import periods
 
         r = periods(length, amplitude, g, iterations, digits)
         note = {} if r.amplitude_double_below_pi else {"period_note": _period_note(r.amplitude_text)}
@@ -106,8 +113,8 @@ def _period_note(amplitude_text: str) -> str:
 @json_option
 def simulate(length, amplitude, step, t_max, t0, digits, as_csv, plot, phase, method, g, as_json):
     """Simulate the pendulum by the Taylor algorithm (3): the table t, z1, z2."""
-    from .. import _validate as v
-    from ..taylor import simulate as run
+    from ..core import validate as v
+    from ..numerics.simulation import simulate as run
 
     t0_, t_max_, h = v.time_span(t0, t_max, float(step))
     v.steps_within("step", t0_, t_max_, h, MAX_PRINTED - 1, "rows printed")  # before anything is allocated
@@ -154,8 +161,8 @@ def _plots():
 @json_option
 def estimate(length, amplitude, steps, t_max, method, dense, g, as_json):
     """The period from simulations (problem 3(c)-(d)): bracket, linear and cubic estimates."""
-    from ..crossing import estimate_periods
-    from ..group import group_length
+    from ..numerics.crossing import estimate_periods
+    from ..numerics.group import group_length
 
     length = float(length) if length is not None else group_length(EXAMPLE_GROUP).length
     r = estimate_periods(length, float(amplitude), steps, t_max, float(g), method)
@@ -194,9 +201,9 @@ def length(numbers, as_json):
 
     NUMBERS are separated by spaces, commas or both: 262 407 634, 262,407,634.
     """
-    from .. import inputs
-    from ..errors import InputError
-    from ..group import group_length
+    from ..core import inputs
+    from ..core.errors import InputError
+    from ..numerics.group import group_length
 
     nums = inputs.students("numbers", list(numbers))
     try:

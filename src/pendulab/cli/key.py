@@ -3,7 +3,7 @@ from __future__ import annotations
 
 import click
 
-from .. import inputs
+from ..core import inputs
 from ._common import Parsed, output
 
 
@@ -19,8 +19,8 @@ from ._common import Parsed, output
 @click.option("--json", "as_json", is_flag=True, help="Print the key as one JSON document on stdout.")
 def key(groups_file: str, output: str | None, as_json: bool) -> None:
     """The answers of every group (problem 3) and the common answers (problems 1, 2, 4, 5) once."""
-    from .. import key as answer
-    from .._atomic import check_not_input, check_writable
+    from ..core.atomic import check_not_input, check_writable
+    from ..jobs import key as answer
     from ._common import emit_json
 
     # Every input checked before the work: the whole file, the output path and format.
@@ -34,12 +34,12 @@ def key(groups_file: str, output: str | None, as_json: bool) -> None:
             for path in (output, answer.class_path(output)) if fmt == "csv" else (output,):
                 check_not_input("output", path, "groups", groups_file)
         if fmt == "pdf":
-            from .._extras import require
+            from ..core.extras import require
 
             require("typst", "pendulab key --output FILE.pdf")
     again = answer.listed_again(groups)
     if again:
-        from ..words import sentence
+        from ..report.words import sentence
 
         listed = "; ".join(sentence("key.listed_again.group", students=" ".join(map(str, students)),
                                     lines=", ".join(map(str, lines))) for students, lines in again)

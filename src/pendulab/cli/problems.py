@@ -5,11 +5,11 @@ from fractions import Fraction
 
 import click
 
-from .. import cases, inputs
-from ..errors import InputError
-from ..newton import Condition
-from ..period import FIXED_ITERATIONS_ULPS
-from ..words import sentence
+from ..core import cases, inputs
+from ..core.errors import InputError
+from ..numerics.newton import Condition
+from ..numerics.period import FIXED_ITERATIONS_ULPS
+from ..report.words import sentence
 from ._common import (
     ANGLE,
     DURATION,
@@ -28,13 +28,13 @@ _S = inputs.TIME_UNITS
 
 
 def _quantity(units: dict[str, Fraction], default_unit: str, strict: bool) -> Parsed:
-    """A number with an optional unit suffix, in SI (:func:`pendulab.inputs.quantity`)."""
+    """A number with an optional unit suffix, in SI (:func:`pendulab.core.inputs.quantity`)."""
     return Parsed(lambda s: float(inputs.quantity("value", s, units, default_unit, strict)), "|".join(units))
 
 
 def _round(text: str) -> int | None:
     """Decimals to round the normal equations to: an integer 0..15, or ``none``."""
-    from ..lsq import MAX_DECIMALS
+    from ..numerics.lsq import MAX_DECIMALS
 
     if text.strip().lower() in ("none", "no", "off"):
         return None
@@ -46,7 +46,7 @@ def _round(text: str) -> int | None:
 
 def _counts(text: str) -> list[int]:
     """Numbers of subintervals: ``1,10,100`` (``1e5`` accepted), each in [1, MAX_N], MAX_TOTAL_N in all."""
-    from ..quadrature import MAX_N, MAX_TOTAL_N
+    from ..numerics.quadrature import MAX_N, MAX_TOTAL_N
 
     ns = inputs.integer_list("n", text, 1, MAX_N)
     if sum(ns) > MAX_TOTAL_N:
@@ -75,7 +75,7 @@ COUNTS = Parsed(_counts, "list")
 @json_option
 def gravity(length, length_error, period, period_error, as_json):
     """Problem 1: g = 4 pi^2 l / T^2 and its propagated error; guaranteed significant digits."""
-    from ..problems import problem1
+    from ..jobs.problems import problem1
 
     r = problem1(float(length), length_error, period, period_error)
     rule, abs_formula, rel_formula = (sentence(f"p1.{k}") for k in ("rule", "abs_error_formula", "rel_error_formula"))
@@ -104,7 +104,7 @@ def gravity(length, length_error, period, period_error, as_json):
 @json_option
 def newton(length, target, x0, g, as_json):
     """Problem 2: the amplitude with T~(alpha) = target, by Newton's method on (9)."""
-    from ..problems import problem2
+    from ..jobs.problems import problem2
 
     r = problem2(float(length), float(target), x0, float(g))
     run, chk = r.run, r.interval
@@ -158,8 +158,8 @@ def condition_text(c: Condition) -> str:
 @json_option
 def fit(length, amplitude, step, t_max, decimals, plot, g, as_json):
     """Problem 4: least-squares fit of the Taylor data by basis (10), via the normal equations."""
-    from ..lsq import TRIG_LABELS
-    from ..problems import problem4
+    from ..jobs.problems import problem4
+    from ..numerics.lsq import TRIG_LABELS
 
     if plot:
         check_plot_path("plot", plot)
@@ -218,7 +218,7 @@ def fit(length, amplitude, step, t_max, decimals, plot, g, as_json):
 @json_option
 def quadrature(length, amplitude, ns, substitution, graded, g, as_json):
     """Problem 5: the period integral (1) by the composite 3-point Gauss rule (11)."""
-    from ..problems import problem5
+    from ..jobs.problems import problem5
 
     substitution = substitution or graded
     r = problem5(float(length), float(amplitude), ns, substitution, float(g), graded=graded)
@@ -248,7 +248,7 @@ def quadrature(length, amplitude, ns, substitution, graded, g, as_json):
 
 
 def t_hat_note(r) -> str | None:
-    """One line where ``T^`` (8) of a :class:`~pendulab.problems.Problem5` is not the period to
+    """One line where ``T^`` (8) of a :class:`~pendulab.jobs.problems.Problem5` is not the period to
     double precision (``t_hat_converged`` false), else None (``null`` in ``--json``)."""
     if r.t_hat_converged:
         return None

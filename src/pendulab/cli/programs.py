@@ -17,7 +17,7 @@ def programs(output: str, lang: str, as_json: bool) -> None:
 
     Plain Python with numpy, scipy and mpmath is enough: they do not import pendulab.
     """
-    from ..coursework import USAGE, write
+    from ..jobs.coursework import USAGE, write
 
     written = write(output, lang)
     if as_json:  # the files written, each with how to run it

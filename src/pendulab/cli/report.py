@@ -5,8 +5,8 @@ import gc
 
 import click
 
-from .. import inputs
-from ..cases import EXAMPLE_GROUP
+from ..core import inputs
+from ..core.cases import EXAMPLE_GROUP
 from ._common import Parsed, choice, emit_json, json_option, output
 
 #: The example group as the option writes it: ``262,407,634``.
@@ -59,8 +59,8 @@ def report(more: tuple[str, ...], students: str, lang: str, output: str, names: 
     was = gc.isenabled()
     gc.disable()
     try:
-        from .._extras import require
-        from ..group import group_length
+        from ..core.extras import require
+        from ..numerics.group import group_length
 
         for package in ("typst", "matplotlib"):
             require(package, "pendulab report")
@@ -83,7 +83,7 @@ def report(more: tuple[str, ...], students: str, lang: str, output: str, names: 
             gc.enable()
     click.echo(f"pendulab: wrote {output}", err=True)
     if as_json:  # the file written, and the answers: the key's document for this one group
-        from ..key import Entry, answer_key
+        from ..jobs.key import Entry, answer_key
         from ..report.key import document
 
         answers = document(answer_key([Entry(numbers, cover)]))

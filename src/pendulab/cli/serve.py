@@ -9,7 +9,7 @@ from collections.abc import Callable
 
 import click
 
-from ..errors import shown
+from ..core.errors import shown
 from ._common import integer
 
 #: Ports tried after a busy one, to suggest a free one.
@@ -114,7 +114,7 @@ EXPOSED = ("note: other computers on the network can open this explorer (there i
                    "Requests naming any other host are refused.")
 def serve(port: int, host: str, allow_host: tuple[str, ...]) -> None:
     """Start the web explorer: simulate, animate and plot the pendulum in the browser."""
-    from .._extras import require
+    from ..core.extras import require
 
     for package in ("fastapi", "uvicorn", "orjson", "swagger_ui_bundle"):
         require(package, "pendulab serve")
@@ -130,7 +130,7 @@ def serve(port: int, host: str, allow_host: tuple[str, ...]) -> None:
 
     import threading
 
-    from .._warm import warm_kernels
+    from ..engine.warm import warm_kernels
     from ..web import create_app
     from ..web.server import run
     from ..web.views import warm

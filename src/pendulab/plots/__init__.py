@@ -13,7 +13,7 @@ from __future__ import annotations
 
 from typing import TYPE_CHECKING
 
-from .._extras import lazy
+from ..core.extras import lazy
 
 if TYPE_CHECKING:
     from .beyond import approximation_errors, sweep_errors

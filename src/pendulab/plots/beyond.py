@@ -10,8 +10,8 @@ from ._axes import axes
 if TYPE_CHECKING:
     from matplotlib.axes import Axes
 
-    from ..approximations import ApproximationErrors
-    from ..sweep import SweepResult
+    from ..jobs.sweep import SweepResult
+    from ..numerics.approximations import ApproximationErrors
 
 # Below this a relative error is rounding of double precision, not the formula: drawn at the floor.
 _FLOOR = 1e-17
@@ -20,7 +20,7 @@ _FLOOR = 1e-17
 def approximation_errors(table: ApproximationErrors, ax: Axes | None = None) -> Axes:
     """``|relative error|`` of each period formula against the amplitude (degrees), log scale.
 
-    ``table`` is a :class:`pendulab.approximations.ApproximationErrors`. Returns ``ax``.
+    ``table`` is a :class:`pendulab.numerics.approximations.ApproximationErrors`. Returns ``ax``.
     """
     ax = axes(ax)
     deg = np.degrees(table.amplitudes)
@@ -44,7 +44,7 @@ def approximation_errors(table: ApproximationErrors, ax: Axes | None = None) -> 
 def sweep_errors(result: SweepResult, ax: Axes | None = None) -> Axes:
     """``|cubic period error|`` against the amplitude, one line per (method, step).
 
-    ``result`` is a :class:`pendulab.sweep.SweepResult`. Pendulums whose simulation did
+    ``result`` is a :class:`pendulab.jobs.sweep.SweepResult`. Pendulums whose simulation did
     not return (status other than ``found``) are left out. Returns ``ax``.
     """
     ax = axes(ax)

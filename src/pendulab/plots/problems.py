@@ -1,4 +1,4 @@
-"""Figures of problems 2, 4 and 5, drawn from the results of :mod:`pendulab.problems`.
+"""Figures of problems 2, 4 and 5, drawn from the results of :mod:`pendulab.jobs.problems`.
 
 The labels default to English; the report passes its catalogue's words.
 """
@@ -13,7 +13,7 @@ from ._axes import axes
 if TYPE_CHECKING:
     from matplotlib.axes import Axes
 
-    from ..problems import Problem2, Problem4, Problem5
+    from ..jobs.problems import Problem2, Problem4, Problem5
 
 #: 5(d): the n^(-1/2) guide is drawn this factor above the first error, beside the data
 #: (which follow it exactly) rather than on top of them.
@@ -24,7 +24,7 @@ def fit(result: Problem4, ax: Axes | None = None, show_exact: bool = False, titl
         labels: dict[str, str] | None = None) -> Axes:
     """4(d)(i): every data point ``(t_j, z1_j)`` and the least-squares ``phi~`` on one plot.
 
-    ``result`` is a :class:`pendulab.problems.Problem4`. ``labels`` replaces the legend's
+    ``result`` is a :class:`pendulab.jobs.problems.Problem4`. ``labels`` replaces the legend's
     and the axes' words (keys ``data``, ``fit``, ``exact``, ``x``, ``y``). Returns ``ax``.
     """
     ax = axes(ax)
@@ -78,7 +78,7 @@ def quadrature_convergence(result: Problem5, ax: Axes | None = None, labels: dic
     """5(d): ``|S_n - T^|`` against ``n`` on log-log axes, with an ``n^(-1/2)`` guide.
 
     The guide is drawn ``GUIDE_OFFSET`` times above the data, which follow it exactly.
-    ``result`` is a :class:`pendulab.problems.Problem5`. Returns ``ax``.
+    ``result`` is a :class:`pendulab.jobs.problems.Problem5`. Returns ``ax``.
     """
     ax = axes(ax)
     words = {"plain": "rule (11), integral (1)", "guide": r"$\propto n^{-1/2}$",
@@ -105,7 +105,7 @@ def quadrature_convergence(result: Problem5, ax: Axes | None = None, labels: dic
 def newton_corrections(result: Problem2, ax: Axes | None = None) -> Axes:
     """2(b): ``|x[k+1] - x[k]|`` against ``k`` (semilog): the exponent doubles each step.
 
-    ``result`` is a :class:`pendulab.problems.Problem2`. Returns ``ax``.
+    ``result`` is a :class:`pendulab.jobs.problems.Problem2`. Returns ``ax``.
     """
     ax = axes(ax)
     d = np.abs(np.array(result.run.corrections))

@@ -5,13 +5,13 @@ from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
-from ..taylor import kept_steps, stride_for
+from ..numerics.simulation import kept_steps, stride_for
 from ._axes import axes
 
 if TYPE_CHECKING:
     from matplotlib.axes import Axes
 
-    from ..taylor import Trajectory
+    from ..numerics.simulation import Trajectory
 
 
 def time_series(trajectory: Trajectory, ax: Axes | None = None, title: bool = True,

@@ -1,7 +1,7 @@
 """Build the coursework report: compute every problem, draw, typeset with Typst.
 
 The flow: each section of :mod:`.sections` runs the coursework programs
-(:mod:`pendulab.coursework`; the engine for what goes beyond the coursework), formats
+(:mod:`pendulab.jobs.coursework`; the engine for what goes beyond the coursework), formats
 their numbers (:mod:`.markup`) and records values, tables and figures in a
 :class:`~.document.Doc`; the catalogue of the chosen language
 (``en.json`` / ``pt.json``) supplies the prose, whose ``{placeholders}`` are filled with
@@ -96,7 +96,7 @@ def section_data(students: Sequence[int], lang: str, folder: Path, only: Sequenc
 
 def appendix(lang: str) -> list[dict[str, str]]:
     """The programs the sections ran, whole, in ``lang``: file name, how to run it, source."""
-    from .. import coursework
+    from ..jobs import coursework
 
     return [{"name": name, "run": coursework.USAGE[name], "source": coursework.source(name, lang)}
             for name in coursework.PROGRAMS]
@@ -137,15 +137,15 @@ def build_report(
     Path
         ``output``.
     """
-    from .._atomic import check_writable, write_bytes
-    from ..group import group_length
+    from ..core.atomic import check_writable, write_bytes
+    from ..numerics.group import group_length
 
     check_lang(lang)
     out = check_writable("output", output)
     students = tuple(students)
     group_length(students)  # bad student numbers fail before the work
     if names is not None:
-        from ..inputs import names as parse_names
+        from ..core.inputs import names as parse_names
 
         names = parse_names("names", ";".join(names), len(students))
     steps = sections.SECTIONS

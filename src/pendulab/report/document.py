@@ -13,7 +13,7 @@ from importlib import resources
 from pathlib import Path
 from typing import Any
 
-from ..errors import InputError
+from ..core.errors import InputError
 
 LANGUAGES = ("en", "pt")
 #: A placeholder no section filled is an error (False only while drafting the catalogue).
@@ -69,7 +69,7 @@ class Doc:
         out = {}
         for key in self.catalogue:
             if key.startswith("text."):
-                continue  # plain text for other presenters (pendulab.words), not Typst
+                continue  # plain text for other presenters (pendulab.report.words), not Typst
             parent = key.rsplit(".", 1)[0]
             if parent in self.choices and self.choices[parent] != key:
                 continue  # an alternative not taken: its numbers may not exist

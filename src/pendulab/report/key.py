@@ -1,7 +1,7 @@
-"""The answer key (:mod:`pendulab.key`) as CSV, JSON or a PDF table, written atomically.
+"""The answer key (:mod:`pendulab.jobs.key`) as CSV, JSON or a PDF table, written atomically.
 
 The CSV is one header row and one row per group; the answers common to the class and the
-marking tolerances go to a second CSV beside it (:func:`pendulab.key.class_path`).
+marking tolerances go to a second CSV beside it (:func:`pendulab.jobs.key.class_path`).
 """
 from __future__ import annotations
 
@@ -13,12 +13,12 @@ import tempfile
 from pathlib import Path
 from typing import Any
 
-from .._atomic import check_writable, write_bytes, write_together
-from ..errors import InputError
-from ..key import FORMATS, REASON_VALUES, TOLERANCES, AnswerKey, Tolerance, class_path, output_format
-from ..words import sentence
+from ..core.atomic import check_writable, write_bytes, write_together
+from ..core.errors import InputError
+from ..jobs.key import FORMATS, REASON_VALUES, TOLERANCES, AnswerKey, Tolerance, class_path, output_format
 from .markup import fixed, num, sci
 from .typeset import needs_system_fonts, typeset
+from .words import sentence
 
 
 def agreement(t: Tolerance, lang: str = "en") -> str:
@@ -242,7 +242,7 @@ def render(key: AnswerKey, fmt: str) -> bytes:
 def write_key(key: AnswerKey, output: str | os.PathLike) -> list[Path]:
     """Write ``key`` atomically to ``output`` (format from its extension); a ``.csv`` also
     gets the class-wide answers and tolerances beside it (:func:`class_path`), the two
-    written as one (:func:`pendulab._atomic.write_together`): never a new key beside an
+    written as one (:func:`pendulab.core.atomic.write_together`): never a new key beside an
     old class file.
 
     Returns the files written.

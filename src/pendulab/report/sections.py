@@ -1,9 +1,9 @@
 """The report's sections: each runs the coursework programs and hands numbers, tables
 and figures to the Doc.
 
-The coursework's numbers come from the programs of :mod:`pendulab.coursework` (the files
-the appendix prints whole), run here for this group; the engine (:mod:`pendulab.problems`,
-:mod:`pendulab.period`) adds what goes beyond the coursework (certified digits, the exact
+The coursework's numbers come from the programs of :mod:`pendulab.jobs.coursework` (the files
+the appendix prints whole), run here for this group; the engine (:mod:`pendulab.jobs.problems`,
+:mod:`pendulab.numerics.period`) adds what goes beyond the coursework (certified digits, the exact
 motion, the substituted integral, the SVD fit) and draws the figures of problems 4 and 5
 from its own results, which the tests check against the programs. A section decides no
 answer of its own: it picks the catalogue's words for what the programs printed.
@@ -21,7 +21,7 @@ from .markup import distinct, fixed, integer, num, sci, sci_beside, sci_up, up
 
 def programs() -> dict[str, Any]:
     """The coursework programs as modules, by file name (``"problem3.py"``)."""
-    from ..coursework import load
+    from ..jobs.coursework import load
 
     return load()
 
@@ -34,9 +34,9 @@ def _toward(x: float, digits: int, rounding: str) -> float:
 
 
 def agm(doc: Doc, students: Sequence[int]) -> None:
-    from .. import period
-    from ..cases import G_EXACT, PROBLEM3_AMPLITUDE
-    from ..inputs import parse_number
+    from ..core.cases import G_EXACT, PROBLEM3_AMPLITUDE
+    from ..core.inputs import parse_number
+    from ..numerics import period
 
     p = programs()
     l_text = p["length.py"].group_length(list(students))[2]
@@ -70,7 +70,7 @@ def agm(doc: Doc, students: Sequence[int]) -> None:
 
 # ----------------------------------------------------------------------------- problem 1
 def problem1(doc: Doc, students: Sequence[int]) -> None:
-    from .. import problems
+    from ..jobs import problems
 
     p1 = programs()["problem1.py"]
     r = p1.solve()
@@ -135,9 +135,9 @@ def problem2(doc: Doc, students: Sequence[int]) -> None:
 def problem3(doc: Doc, students: Sequence[int]) -> None:
     import numpy as np
 
-    from ..cases import G
+    from ..core.cases import G
+    from ..numerics.simulation import Trajectory
     from ..plots.simulation import phase_portrait, time_series
-    from ..taylor import Trajectory
     from .figures import LABELS
 
     p = programs()
@@ -259,8 +259,8 @@ P4_NAMES = {"gamma": "$gamma$", "a0": "$a_0$", "b0": "$b_0$", "a1": "$a_1$", "b1
 def problem4(doc: Doc, students: Sequence[int]) -> None:
     import numpy as np
 
-    from .. import problems
-    from ..cases import PROBLEM4_ALT_T_MAX
+    from ..core.cases import PROBLEM4_ALT_T_MAX
+    from ..jobs import problems
     from ..plots.problems import fit, fit_residuals
     from .figures import LABELS
 
@@ -313,7 +313,7 @@ def problem4(doc: Doc, students: Sequence[int]) -> None:
 
 # ----------------------------------------------------------------------------- problem 5
 def problem5(doc: Doc, students: Sequence[int]) -> None:
-    from .. import problems
+    from ..jobs import problems
     from ..plots.problems import GUIDE_OFFSET, quadrature_convergence
     from .figures import LABELS
 

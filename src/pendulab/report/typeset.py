@@ -16,7 +16,7 @@ DEFAULT_DATE = (2020, 1, 6)  # the coursework's deadline
 
 def timestamp() -> int:
     """The document's date: ``SOURCE_DATE_EPOCH`` where set (checked), else :data:`DEFAULT_DATE`."""
-    from ..inputs import source_date_epoch
+    from ..core.inputs import source_date_epoch
 
     epoch = source_date_epoch(os.environ.get("SOURCE_DATE_EPOCH"))
     return calendar.timegm((*DEFAULT_DATE, 12, 0, 0)) if epoch is None else epoch

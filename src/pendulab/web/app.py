@@ -5,7 +5,7 @@ Routes
 ``GET /``                     the explorer page (``static/index.html``)
 ``GET /static/{file}``        the page's own script and style
 ``GET /vendor/plotly.min.js`` plotly.js's "basic" bundle (MIT licence, in ``static/``)
-``GET /api/config``           the methods of :mod:`pendulab.methods` now, g presets, limits
+``GET /api/config``           the methods of :mod:`pendulab.core.methods` now, g presets, limits
 ``GET /api/period``           exact (AGM) and small-angle periods
 ``GET /api/simulate``         what the page draws (min/max per column), exact motion, estimates, flags
 ``GET /api/convergence``      period estimates and their errors over a list of steps
@@ -30,7 +30,7 @@ limit on the cores. A request waiting for a slot is a queued work item awaited o
 loop, holding no thread, so a class's worth of heavy requests never stops the page from
 answering; the numba kernels release the GIL while they run. When a client goes away, its
 queued work is dropped and its running work stops between two pieces of its kernel runs
-(:func:`pendulab._interrupt.stop_when`).
+(:func:`pendulab.core.interrupt.stop_when`).
 """
 from __future__ import annotations
 
@@ -53,8 +53,8 @@ from fastapi.middleware.gzip import GZipMiddleware
 from fastapi.responses import FileResponse, HTMLResponse, JSONResponse, Response, StreamingResponse
 from starlette.exceptions import HTTPException as StarletteHTTPException
 
-from .._interrupt import Stopped, stop_when
-from ..errors import InputError
+from ..core.errors import InputError
+from ..core.interrupt import Stopped, stop_when
 from . import guard, limits, models, views
 
 STATIC = Path(__file__).parent / "static"
@@ -160,7 +160,7 @@ def _given(params: dict[str, str | None]) -> dict[str, str]:
     return {k: v for k, v in params.items() if v is not None}
 
 
-# Typed query parameters: OpenAPI lists them; their text is parsed by pendulab.inputs, the
+# Typed query parameters: OpenAPI lists them; their text is parsed by pendulab.core.inputs, the
 # CLI's parser, so a value is judged the same way in the page and in a terminal.
 Length = Annotated[str | None, Query(description="Pendulum length l > 0, m: 3.5, 1e-2, 7/2")]
 Amplitude = Annotated[str | None, Query(description="Amplitude in [0, pi): 0.785, pi/4, 4pi/5, 144deg, 144°")]

@@ -1,18 +1,18 @@
 """What one request of the explorer may cost: work weighted by the method, points, bytes.
 
 Work is counted in steps of the coursework's method (3) (``taylor2``): a step of another
-method counts as :func:`pendulab.methods.cost_per_step` of them (measured), so
+method counts as :func:`pendulab.core.methods.cost_per_step` of them (measured), so
 ``taylor:30``, about forty times dearer a step, gets about a fortieth of the steps. The
 trajectory and the period search of one request are each within :data:`MAX_WORK`. Every check runs before any work starts and
-raises :class:`pendulab.errors.InputError` naming the field to change.
+raises :class:`pendulab.core.errors.InputError` naming the field to change.
 """
 from __future__ import annotations
 
 import os
 
-from .. import _validate as v
-from .. import inputs
-from ..methods import Method
+from ..core import inputs
+from ..core import validate as v
+from ..core.methods import Method
 
 #: The work one request may run, in steps of (3) (about 1 s of one core for taylor2).
 MAX_WORK = 10_000_000

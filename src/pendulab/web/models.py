@@ -167,7 +167,7 @@ class State(_Model):
 
 
 class Launch(_Model):
-    """A pendulum released with an angular velocity (``omega0`` given and not 0): pendulab.launched."""
+    """A pendulum released with an angular velocity (``omega0`` given and not 0): pendulab.numerics.launched."""
 
     omega0: float = Field(description="theta'(0), rad/s")
     k: float = Field(description="sqrt(E0/(2 m g l)): below 1 it swings, above 1 it goes round")
@@ -224,7 +224,7 @@ class MotionAnswer(PeriodAnswer):
 
 
 class Approximation(_Model):
-    name: str = Field(description="a key of pendulab.approximations.FORMULAS")
+    name: str = Field(description="a key of pendulab.numerics.approximations.FORMULAS")
     label: str
     source: str
     ratio: Values = Field(description="T_approx/T0 at each amplitude")

@@ -1,8 +1,8 @@
 """The explorer's query parameters: text in, checked values out.
 
-Each value is read by the CLI's own parsers (:mod:`pendulab.inputs`), so a value is
+Each value is read by the CLI's own parsers (:mod:`pendulab.core.inputs`), so a value is
 judged the same way in the page and in a terminal; a bad one raises
-:class:`pendulab.errors.InputError` naming the field, the value as typed and the allowed
+:class:`pendulab.core.errors.InputError` naming the field, the value as typed and the allowed
 range. The work a request may cause is bounded by :mod:`pendulab.web.limits`.
 """
 from __future__ import annotations
@@ -10,11 +10,11 @@ from __future__ import annotations
 from collections.abc import Mapping
 from typing import Any
 
-from .. import _validate as v
-from .. import inputs
-from ..cases import G_TEXT, G
-from ..errors import InputError
-from ..methods import Method
+from ..core import inputs
+from ..core import validate as v
+from ..core.cases import G_TEXT, G
+from ..core.errors import InputError
+from ..core.methods import Method
 from . import limits
 
 #: Gravity presets, m/s^2. Earth: standard gravity (the coursework's g); Moon and
@@ -58,7 +58,7 @@ def text(params: Mapping[str, str], name: str, default: str | None = None) -> st
 
 
 def positive(params: Mapping[str, str], name: str, default: str | None = None) -> float:
-    """A number > 0 by :func:`pendulab.inputs.positive`, the CLI's parser."""
+    """A number > 0 by :func:`pendulab.core.inputs.positive`, the CLI's parser."""
     return float(inputs.positive(name, text(params, name, default), ALLOWED[name]))
 
 
@@ -80,7 +80,7 @@ def amplitude(params: Mapping[str, str]) -> float:
 
 
 def method(params: Mapping[str, str]) -> Method:
-    """The integrator by :func:`pendulab.methods.resolve`: the registry as it is now."""
+    """The integrator by :func:`pendulab.core.methods.resolve`: the registry as it is now."""
     return inputs.method("method", text(params, "method", "taylor2"))
 
 
@@ -105,7 +105,7 @@ def omega0(params: Mapping[str, str]) -> float:
 
 def simulation(params: Mapping[str, str]) -> dict[str, Any]:
     """All inputs of a simulation: pendulum, ``step``, ``t_max``, ``method``; its work within the limits."""
-    from ..taylor import step_count
+    from ..numerics.simulation import step_count
 
     p = pendulum(params)
     p["step"] = positive(params, "step")

@@ -4,7 +4,7 @@
 min/max reduction of Jugel et al., "M4: A Visualization-Oriented Time Series Data
 Aggregation", PVLDB 7(10), 2014); the phase portrait keeps whole orbits; the animation and
 the global error keep evenly spaced steps. :func:`simulate_arrays` runs the one streamed
-pass (:func:`pendulab.web.stream.run`: the library's trajectory driver, folded as it goes) in
+pass (:func:`pendulab.engine.fold.run`: the library's trajectory driver, folded as it goes) in
 pieces, as the library's drivers run theirs, so a request whose client has gone stops between
 two pieces.
 """
@@ -16,9 +16,9 @@ from typing import Any
 
 import numpy as np
 
-from .._interrupt import CHUNK_COST
-from ..methods import cost_per_step
-from ..taylor import kept_steps, stride_for
+from ..core.interrupt import CHUNK_COST
+from ..core.methods import cost_per_step
+from ..numerics.simulation import kept_steps, stride_for
 
 #: Phase-portrait points per exact period, and at most this many in all.
 PHASE_PER_PERIOD, PHASE_POINTS = 256, 4000
@@ -86,13 +86,13 @@ def columns(i_lo: np.ndarray, v_lo: np.ndarray, i_hi: np.ndarray, v_hi: np.ndarr
 
 
 def exact_overlay(length: float, alpha: float, g: float, period: float, t_end: float, nb: int) -> tuple[np.ndarray, np.ndarray]:
-    """The exact motion (:func:`pendulab.motion.exact_motion`) drawn with the same min/max rule.
+    """The exact motion (:func:`pendulab.numerics.motion.exact_motion`) drawn with the same min/max rule.
 
     Between two turning points ``theta`` is monotone, so in each of ``nb`` time columns its
     extremes are at the column's ends or at a turn ``t = k T/2`` (``theta = (-1)^k alpha``):
     the columns' ends plus the first two turns of each column give its exact extent.
     """
-    from ..motion import exact_motion
+    from ..numerics.motion import exact_motion
 
     edges = np.linspace(0.0, t_end, nb + 1)
     with np.errstate(invalid="ignore", over="ignore"):  # a phase sqrt(g/l) t beyond the doubles: NaN, drawn as a gap
@@ -130,20 +130,20 @@ def simulate_arrays(p: Mapping[str, Any], points: int) -> dict[str, Any]:
     ``theta(t)``: the min and max of ``theta`` in each of ``points // 2`` columns of steps
     (every step when ``n + 1 <= points``); the energy drift likewise; the phase portrait
     and animation samples; the first step that left the oscillation or went non-finite.
-    The steps run in pieces (:func:`pendulab._interrupt.run_pieces`): inside
-    :func:`pendulab._interrupt.stop_when`, a set event stops the pass between two pieces.
+    The steps run in pieces (:func:`pendulab.core.interrupt.run_pieces`): inside
+    :func:`pendulab.core.interrupt.stop_when`, a set event stops the pass between two pieces.
     """
-    from ..period import agm_period
-    from ..taylor import method_code, step_count
-    from . import stream
+    from ..engine import fold
+    from ..numerics.period import agm_period
+    from ..numerics.simulation import method_code, step_count
 
     code, order = method_code(p["method"])
     n = step_count(0.0, p["t_max"], p["step"])
     c = -p["g"] / p["length"]
     h = p["step"]
     omega0 = p.get("omega0", 0.0)
-    if omega0:  # a launch: its own period (a turn, when it goes round), pendulab.launched
-        from ..launched import launch
+    if omega0:  # a launch: its own period (a turn, when it goes round), pendulab.numerics.launched
+        from ..numerics.launched import launch
 
         period = launch(p["length"], p["amplitude"], omega0, p["g"]).period
         period = period if math.isfinite(period) else p["t_max"]
@@ -155,13 +155,13 @@ def simulate_arrays(p: Mapping[str, Any], points: int) -> dict[str, Any]:
     frame_idx = frame_samples(n, per)
     error_idx = frame_samples(n, per, 64, ERROR_POINTS)
     samples = np.union1d(np.union1d(phase_idx, frame_idx), error_idx)
-    rec = stream.run(code, order, p["amplitude"], omega0, c, h, n, nb, samples,
+    rec = fold.run(code, order, p["amplitude"], omega0, c, h, n, nb, samples,
                      max(1, int(CHUNK_COST / cost_per_step(p["method"]))))
-    left, bad = int(rec.where[stream.LEFT]), int(rec.where[stream.BAD])
+    left, bad = int(rec.where[fold.LEFT]), int(rec.where[fold.BAD])
     val, at = rec.value, rec.step
-    idx, theta = columns(at[stream.I_LO], val[stream.TH_LO], at[stream.I_HI], val[stream.TH_HI])
-    _, omega = columns(at[stream.I_LO], val[stream.OM_LO], at[stream.I_HI], val[stream.OM_HI])
-    e_idx, drift = columns(at[stream.E_I_LO], val[stream.E_LO], at[stream.E_I_HI], val[stream.E_HI])
+    idx, theta = columns(at[fold.I_LO], val[fold.TH_LO], at[fold.I_HI], val[fold.TH_HI])
+    _, omega = columns(at[fold.I_LO], val[fold.OM_LO], at[fold.I_HI], val[fold.OM_HI])
+    e_idx, drift = columns(at[fold.E_I_LO], val[fold.E_LO], at[fold.E_I_HI], val[fold.E_HI])
     s_th, s_om = rec.s_theta, rec.s_omega
     pos = np.searchsorted(samples, phase_idx)
     fpos = np.searchsorted(samples, frame_idx)

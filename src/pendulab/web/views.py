@@ -1,10 +1,10 @@
 """The explorer's answers: checked parameters in, JSON-ready dicts (or CSV text) out.
 
 A presenter, like the CLI: it reads the query with :mod:`pendulab.web.parameters`, calls
-:func:`pendulab.crossing.search_period`, :func:`pendulab.period.periods` and the
+:func:`pendulab.numerics.crossing.search_period`, :func:`pendulab.numerics.period.periods` and the
 streamed pass of :mod:`pendulab.web.sampling`, and renders their results; the shape of
 each answer is :mod:`pendulab.web.models`. Every bad input raises
-:class:`pendulab.errors.InputError` (the route turns it into status 422 naming the field
+:class:`pendulab.core.errors.InputError` (the route turns it into status 422 naming the field
 and the allowed range). Nothing here touches HTTP, so the tests call these functions
 directly as well as through the app.
 """
@@ -19,16 +19,16 @@ from typing import TYPE_CHECKING, Any
 import numpy as np
 from pydantic import BaseModel
 
-from .. import _validate as v
-from .. import inputs
-from ..cases import PROBLEM5, G
-from ..errors import InputError
-from ..methods import Status, resolve
+from ..core import inputs
+from ..core import validate as v
+from ..core.cases import PROBLEM5, G
+from ..core.errors import InputError
+from ..core.methods import Status, resolve
 from . import limits, models, parameters, sampling
 from .sampling import finite_list
 
 if TYPE_CHECKING:
-    from ..crossing import PeriodSearch
+    from ..numerics.crossing import PeriodSearch
 
 __all__ = ["config_view", "convergence_view", "motion_view", "period_curve_view", "period_endpoint",
            "simulate_view", "trajectory_csv", "warm"]
@@ -54,9 +54,9 @@ def _num(x: float) -> float | None:
 
 
 def period_view(length: float, amplitude: float, g: float) -> dict[str, Any]:
-    """The periods of :func:`pendulab.period.periods` that :class:`models.PeriodAnswer` lists
+    """The periods of :func:`pendulab.numerics.period.periods` that :class:`models.PeriodAnswer` lists
     (the AGM period (7)-(8) and the small-angle one), and the amplitude in degrees."""
-    from ..period import periods
+    from ..numerics.period import periods
 
     return _answer(models.PeriodAnswer, periods(length, amplitude, g).to_dict()) | {"amplitude_deg": math.degrees(amplitude)}
 
@@ -67,11 +67,11 @@ def estimate_view(length: float, amplitude: float, step: float, g: float, method
     Returns ``{"estimate": {...}, "status": "found", "reason": None}`` with the bracket
     ``[t_j, t_{j+1}]``, its midpoint, the linear and inverse-cubic (problem 3(d)) estimates
     and their absolute errors against the AGM period; else ``estimate`` None, the search's
-    status (:class:`pendulab.crossing.PeriodSearch`; ``not_run`` where the search does not
+    status (:class:`pendulab.numerics.crossing.PeriodSearch`; ``not_run`` where the search does not
     run) and a line saying why.
     """
-    from ..crossing import default_t_max, search_period
-    from ..period import agm_period
+    from ..numerics.crossing import default_t_max, search_period
+    from ..numerics.period import agm_period
 
     exact = float(agm_period(length, amplitude, g))
     span = default_t_max(exact, step)
@@ -101,7 +101,7 @@ NOT_RUN = "not_run"
 
 
 def search_reason(s: PeriodSearch) -> str:
-    """Why a period search (:func:`pendulab.crossing.search_period`) found no period, from its
+    """Why a period search (:func:`pendulab.numerics.crossing.search_period`) found no period, from its
     status and data, in the page's words (the search's ``t_max`` is the page's, not the reader's)."""
     if s.underflow:
         k = s.g / s.length
@@ -121,13 +121,13 @@ def search_reason(s: PeriodSearch) -> str:
 
 
 def exact_state(p: Mapping[str, Any], t: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-    """``(theta, theta')`` of the exact motion at ``t``: from rest (:func:`pendulab.motion.exact_motion`)
-    or launched with ``omega0`` (:func:`pendulab.launched.launched_motion`)."""
+    """``(theta, theta')`` of the exact motion at ``t``: from rest (:func:`pendulab.numerics.motion.exact_motion`)
+    or launched with ``omega0`` (:func:`pendulab.numerics.launched.launched_motion`)."""
     if p.get("omega0", 0.0):
-        from ..launched import launched_motion
+        from ..numerics.launched import launched_motion
 
         return launched_motion(p["length"], p["amplitude"], p["omega0"], t, p["g"])
-    from ..motion import exact_motion
+    from ..numerics.motion import exact_motion
 
     m = exact_motion(p["length"], p["amplitude"], t, p["g"])
     return m.theta, m.omega
@@ -231,7 +231,7 @@ def simulate_view(params: Mapping[str, str]) -> dict[str, Any]:
     launched = _launch_view(p, params)
     if launched is None:
         est = estimate_view(p["length"], p["amplitude"], p["step"], p["g"], p["method"])
-    else:  # the coursework's estimate times a release at rest; a launch has its period from pendulab.launched
+    else:  # the coursework's estimate times a release at rest; a launch has its period from pendulab.numerics.launched
         est = {"estimate": None, "status": NOT_RUN, "reason": (
             f"the period is estimated from a release at rest; this pendulum is launched with theta'(0) = {p['omega0']:g} "
             f"rad/s: its exact {'time for one turn' if launched['circulates'] else 'period'} is shown")}
@@ -291,10 +291,10 @@ def simulate_view(params: Mapping[str, str]) -> dict[str, Any]:
 
 def _launch_view(p: Mapping[str, Any], params: Mapping[str, str]) -> dict[str, Any] | None:
     """None for a release at rest; else the launch: ``omega0``, ``k``, whether it goes round,
-    its period (a turn's time when it does) and turning angle (:mod:`pendulab.launched`)."""
+    its period (a turn's time when it does) and turning angle (:mod:`pendulab.numerics.launched`)."""
     if not p["omega0"]:
         return None
-    from ..launched import launch
+    from ..numerics.launched import launch
 
     info = launch(p["length"], p["amplitude"], p["omega0"], p["g"])
     if not math.isfinite(info.period):
@@ -323,14 +323,14 @@ def trajectory_csv(params: Mapping[str, str]) -> tuple[Iterator[str], str]:
 
 def csv_blocks(p: Mapping[str, Any], points: int) -> Iterator[str]:
     """The CSV text in blocks of :data:`CSV_BLOCK` rows: header first, then the kept steps."""
-    from .._kernels import kernel_code
-    from ..taylor import method_code, step_count, stride_for
+    from ..engine.kernels import kernel_code
+    from ..numerics.simulation import method_code, step_count, stride_for
 
     method, order = method_code(p["method"])
     n = step_count(0.0, p["t_max"], p["step"])
     stride = stride_for(n, points)  # at most ``points`` rows, step 0's included
     h, c = p["step"], -p["g"] / p["length"]
-    code = kernel_code(method, c, h)  # as taylor.simulate: the same points
+    code = kernel_code(method, c, h)  # as simulation.simulate: the same points
     full = p if p.get("columns", "state") == "all" else None
     w0 = float(p.get("omega0", 0.0))
     first = _csv_rows(p, np.zeros(1), np.array([p["amplitude"]]), np.array([w0])) if full else f"{0.0!r},{p['amplitude']!r},{w0!r}\n"
@@ -357,8 +357,8 @@ def _csv_rows(p: Mapping[str, Any], t: np.ndarray, theta: np.ndarray, omega: np.
 def _csv_block(code: int, order: int, state: tuple[float, float], c: float, h: float,
                i0: int, i1: int, stride: int, n: int,
                full: Mapping[str, Any] | None = None) -> tuple[tuple[float, float], str]:
-    from .._kernels import drive
-    from ..taylor import kept_steps
+    from ..engine.kernels import drive
+    from ..numerics.simulation import kept_steps
 
     size = (i1 - i0) // stride + 2
     z1, z2 = np.empty(size), np.empty(size)
@@ -373,7 +373,7 @@ def _csv_block(code: int, order: int, state: tuple[float, float], c: float, h: f
 
 def convergence_view(params: Mapping[str, str]) -> dict[str, Any]:
     """``GET /api/convergence``: the period estimates and their errors for a list of steps."""
-    from ..crossing import default_t_max
+    from ..numerics.crossing import default_t_max
 
     p = parameters.pendulum(params)
     method = parameters.method(params)
@@ -401,11 +401,11 @@ def motion_view(params: Mapping[str, str]) -> dict[str, Any]:
     """``GET /api/motion``: the exact motion alone (no simulation), for the page's second pendulum.
 
     The period view of the pendulum and ``frames``: ``theta`` and ``theta'`` of
-    :func:`pendulab.motion.exact_motion` at evenly spaced times from 0 to ``t_max``, 16 a
+    :func:`pendulab.numerics.motion.exact_motion` at evenly spaced times from 0 to ``t_max``, 16 a
     period where at most :data:`pendulab.web.sampling.FRAME_POINTS` fit (the page
     interpolates between them).
     """
-    from ..motion import exact_motion
+    from ..numerics.motion import exact_motion
 
     p = parameters.pendulum(params)
     t_max = parameters.positive(params, "t_max", parameters.DEFAULTS["t_max"])
@@ -418,7 +418,7 @@ def motion_view(params: Mapping[str, str]) -> dict[str, Any]:
                               "per_period": view["period"] / (t[1] - t[0])}}
 
 
-#: The approximations the T(alpha)/T0 curve draws (keys of :data:`pendulab.approximations.FORMULAS`).
+#: The approximations the T(alpha)/T0 curve draws (keys of :data:`pendulab.numerics.approximations.FORMULAS`).
 CURVE_FORMULAS = ("small-angle", "coursework-9", "kidd-fogg", "lima-arun", "ganley")
 
 
@@ -427,10 +427,10 @@ def period_curve_view() -> dict[str, Any]:
     """``GET /api/period_curve``: ``T(alpha)/T0`` from 0 to 179 deg, by the AGM and approximated.
 
     ``period_ratio``: the AGM period (7)-(8) over the small-angle one; each approximation's
-    ratio is its formula's (:mod:`pendulab.approximations`, with its source).
+    ratio is its formula's (:mod:`pendulab.numerics.approximations`, with its source).
     """
-    from ..approximations import FORMULAS
-    from ..period import agm_period, small_angle_period
+    from ..numerics.approximations import FORMULAS
+    from ..numerics.period import agm_period, small_angle_period
 
     deg = np.arange(0.0, 180.0)
     alpha = np.radians(deg)
@@ -448,7 +448,7 @@ def period_curve_view() -> dict[str, Any]:
 
 def config_view() -> dict[str, Any]:
     """``GET /api/config``: the methods the library has now, g presets, limits, defaults."""
-    from ..methods import MAX_TAYLOR_ORDER, menu
+    from ..core.methods import MAX_TAYLOR_ORDER, menu
 
     return {
         "methods": [{"name": m.name, "order": m.order, "description": m.description} for m in menu()],

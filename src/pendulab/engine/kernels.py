@@ -1,0 +1,343 @@
+"""The engine's loops: each integrator's step, one dispatch, one trajectory driver, one period search.
+
+Numba kernels on plain floats and arrays. Each step is its formula written once, short
+and literal: :func:`taylor2_step` is the coursework's (3) in the order of operations of
+its program (``pendulab/programs/taylor.py``, which the report prints), the same points bit
+for bit. :func:`step` dispatches on a kernel code: one branch per integrator of
+:mod:`pendulab.core.methods`, and one more, :data:`TAYLOR2_FAST`, for (3) through a certified
+table sine and cosine (:func:`taylor2_fast_step`, :mod:`pendulab.engine.fast`): the literal
+step's doubles, fewer library calls. :func:`kernel_code` says which code a run takes.
+:func:`drive` runs a trajectory of any code, :func:`search_return` the period search; no
+method has a loop of its own. :func:`agm_means` runs the AGM of (7) over arrays.
+Compiled kernels are cached on disk (``cache=True``): a second run does not compile.
+"""
+import math
+
+import numpy as np
+from numba import njit, prange
+from numba.extending import register_jitable
+
+from ..core.interrupt import CHUNK_COST, pieces, run_pieces
+from ..core.methods import MAX_TAYLOR_ORDER, Kernel, Status, cost_per_step
+from .agm import PI_HI, agm
+from .fast import FAST_MAX_K, certified_step, likely
+from .libm import cos, sin
+
+#: Method codes understood by :func:`step` (the registry's, as plain ints for numba).
+TAYLOR2, RK4, VERLET, TAYLOR = (int(k) for k in (Kernel.TAYLOR2, Kernel.RK4, Kernel.VERLET, Kernel.TAYLOR))
+#: The code of (3) through :func:`taylor2_fast_step`: internal, never a method a person
+#: chooses (:func:`kernel_code` picks it for taylor2).
+TAYLOR2_FAST = max(Kernel) + 1
+
+
+@njit(cache=True, nogil=True, inline="always")
+def taylor2_step(z1, z2, h, c):
+    """One step of the coursework's second-order Taylor algorithm, equations (3)."""
+    s = sin(z1)  # the C library's sin, then its cos: no slower than one sincos (libm.py)
+    z1_next = z1 + h * z2 + 0.5 * h * h * c * s
+    z2_next = z2 + h * c * s + 0.5 * h * h * c * z2 * cos(z1)
+    return z1_next, z2_next
+
+
+@njit(cache=True, nogil=True, inline="always")
+def taylor2_fast_step(z1, z2, h, c):
+    """:func:`taylor2_step`, bit for bit, mostly without calling the C library.
+
+    (3) with the table's sine and cosine where :func:`pendulab.engine.fast.certified_step`'s
+    rounding test proves the result equal to the C library's; otherwise (about 1 step in
+    10^3 at ``h = 1e-6``; a zero or a NaN also goes this way), and where ``|z1| >= pi`` or
+    the step is coarse (``|K| > FAST_MAX_K``, where the test would fail often), it is
+    :func:`taylor2_step`. The next angle waits on the table, not on the test: the test's
+    branch is almost always taken.
+    """
+    K = 0.5 * h * h * c
+    if likely(abs(z1) < PI_HI and abs(K) <= FAST_MAX_K):
+        certified, z1_next, z2_next = certified_step(z1, z2, h, c, K)
+        if likely(certified):
+            return z1_next, z2_next
+    return taylor2_step(z1, z2, h, c)
+
+
+@njit(cache=True, nogil=True, inline="always")
+def rk4_step(z1, z2, h, c):
+    """One step of the classical Runge-Kutta method (order 4) for ``z1' = z2, z2' = c sin z1``.
+
+    Hairer, Norsett, Wanner, *Solving ODEs I*, section II.1, table 1.2 ("la" methode de Runge-Kutta).
+    """
+    k1 = z2
+    l1 = c * sin(z1)
+    k2 = z2 + 0.5 * h * l1
+    l2 = c * sin(z1 + 0.5 * h * k1)
+    k3 = z2 + 0.5 * h * l2
+    l3 = c * sin(z1 + 0.5 * h * k2)
+    k4 = z2 + h * l3
+    l4 = c * sin(z1 + h * k3)
+    return z1 + h / 6 * (k1 + 2 * k2 + 2 * k3 + k4), z2 + h / 6 * (l1 + 2 * l2 + 2 * l3 + l4)
+
+
+@njit(cache=True, nogil=True, inline="always")
+def verlet_step(z1, z2, h, c):
+    """One step of Stormer-Verlet (velocity form): symplectic, order 2.
+
+    Hairer, Lubich, Wanner, "Geometric numerical integration illustrated by the
+    Stormer-Verlet method", Acta Numerica 12 (2003), equation (1.5) (kick, drift, kick).
+    """
+    z2_half = z2 + 0.5 * h * c * sin(z1)
+    z1_next = z1 + h * z2_half
+    return z1_next, z2_half + 0.5 * h * c * sin(z1_next)
+
+
+@njit(cache=True, nogil=True)  # not inlined: its scratch arrays stay out of the other methods' loops
+def taylor_step(p, z1, z2, h, c):
+    """One step of the Taylor method of order ``p``: the generalisation of (3).
+
+    With ``theta(t + s) = sum_k x_k s^k`` and ``sin(theta) = sum_k S_k s^k``,
+    ``cos(theta) = sum_k C_k s^k``, the Taylor coefficients obey (differentiate
+    ``sin(theta)' = cos(theta) theta'`` and ``cos(theta)' = -sin(theta) theta'``)::
+
+        S_k =  1/k sum_{j=1..k} j x_j C_{k-j},   C_k = -1/k sum_{j=1..k} j x_j S_{k-j}
+
+    and (2) gives ``(k+1)(k+2) x_{k+2} = c S_k``. Then ``z1 <- sum_{k<=p} x_k h^k`` and
+    ``z2 <- sum_{k<=p+1} k x_k h^(k-1)``; ``p = 2`` is (3), ``p = 1`` is Euler's method.
+    (Moore, *Interval Analysis*, 1966, ch. 11; Jorba, Zou, Experiment. Math. 14 (2005) 99-117.)
+    """
+    x = np.empty(MAX_TAYLOR_ORDER + 2)
+    S = np.empty(MAX_TAYLOR_ORDER)
+    C = np.empty(MAX_TAYLOR_ORDER)
+    x[0] = z1
+    x[1] = z2
+    S[0] = sin(z1)
+    C[0] = cos(z1)
+    x[2] = c * S[0] / 2
+    for k in range(1, p):
+        sk = 0.0
+        ck = 0.0
+        for j in range(1, k + 1):
+            sk += j * x[j] * C[k - j]
+            ck -= j * x[j] * S[k - j]
+        S[k] = sk / k
+        C[k] = ck / k
+        x[k + 2] = c * S[k] / ((k + 1) * (k + 2))
+    z1_next = x[p]  # Horner's rule
+    for k in range(p - 1, -1, -1):
+        z1_next = z1_next * h + x[k]
+    z2_next = (p + 1) * x[p + 1]
+    for k in range(p, 0, -1):
+        z2_next = z2_next * h + k * x[k]
+    return z1_next, z2_next
+
+
+@njit(cache=True, nogil=True, inline="always")
+def step(method, order, z1, z2, h, c):
+    """One step of the integrator of kernel code ``method`` for ``theta'' = c sin(theta)`` (2).
+
+    ``order`` is used by the Taylor method of any order only.
+    """
+    if method == TAYLOR2:
+        return taylor2_step(z1, z2, h, c)
+    if method == TAYLOR2_FAST:
+        return taylor2_fast_step(z1, z2, h, c)
+    if method == RK4:
+        return rk4_step(z1, z2, h, c)
+    if method == VERLET:
+        return verlet_step(z1, z2, h, c)
+    return taylor_step(order, z1, z2, h, c)
+
+
+@register_jitable
+def kernel_code(method, c, h):
+    """The code :func:`step` runs for ``method`` (a :class:`~pendulab.core.methods.Kernel`) with
+    ``c`` and ``h``: :data:`TAYLOR2_FAST` for (3) with steps fine enough for the table's
+    rounding test to pass nearly always (``|h^2 c / 2| <= FAST_MAX_K``), ``method`` otherwise.
+    The points are the same either way; this chooses the faster. Callable from kernels too.
+    """
+    if method == TAYLOR2 and abs(0.5 * h * h * c) <= FAST_MAX_K:
+        return TAYLOR2_FAST
+    return method
+
+
+@njit(cache=True, nogil=True)
+def drive(method, order, a, b, c, h, i0, i1, stride, n, z1, z2):
+    """Steps ``i0 + 1 .. i1`` of a run of ``n`` steps, from the state ``(a, b)`` of step ``i0``:
+    the one loop of a trajectory, with "what to keep" as its parameters.
+
+    Keeps the state of every step that is a multiple of ``stride``, and of step ``n``, in
+    ``z1[k], z2[k]`` for ``k = 0, 1, ...``. Returns ``(a, b, k)``: the state of step ``i1`` and
+    how many states were kept. ``i1 <= n``.
+    """
+    k = 0
+    keep = (i0 // stride + 1) * stride  # the next multiple of stride: no division per step (~7 ns of ~30)
+    for i in range(i0 + 1, i1 + 1):
+        a, b = step(method, order, a, b, h, c)
+        if i == keep or i == n:  # noqa: SIM109 (two compares in the compiled loop, no tuple)
+            z1[k] = a
+            z2[k] = b
+            k += 1
+            keep += stride
+    return a, b, k
+
+
+def piece_steps(method, order) -> int:
+    """Steps per piece of a run cut into pieces (:func:`pendulab.core.interrupt.run_pieces`): the
+    same cost for every method, so that Ctrl+C waits one piece at most (tens of ms)."""
+    method = TAYLOR2 if method == TAYLOR2_FAST else method  # no dearer than (3)
+    name = f"taylor:{order}" if method == TAYLOR else Kernel(method).name.lower()
+    return max(1, int(CHUNK_COST / cost_per_step(name)))
+
+
+def thinned(method, order, alpha, c, h, n, stride, size):
+    """The points ``Z_j`` for ``j = 0, stride, 2 stride, ...`` and ``j = n`` (``size`` of them),
+    as two new arrays, for the method of code ``method`` (a :class:`~pendulab.core.methods.Kernel`).
+
+    :func:`drive` of :func:`kernel_code`'s code in pieces, each from the state the one before
+    ended in: the same points, bit for bit, and a signal stops the run between two pieces.
+    """
+    code = kernel_code(method, c, h)
+    z1 = np.empty(size)
+    z2 = np.empty(size)
+    z1[0], z2[0] = alpha, 0.0
+    state = [alpha, 0.0, 1]  # the state (a, b) of the last step run, the next point to keep
+
+    def run(lo, hi):
+        a, b, k = state
+        a, b, kept = drive(code, order, a, b, c, h, lo, hi, stride, n, z1[k:], z2[k:])
+        state[:] = a, b, k + kept
+        return False
+
+    run_pieces(pieces(n, piece_steps(code, order)), run)
+    return z1, z2
+
+
+def trajectory(method, order, alpha, c, h, n):
+    """The points ``Z_j``, ``j = 0..n``, as two new arrays (:func:`thinned`, every step kept)."""
+    return thinned(method, order, alpha, c, h, n, 1, n + 1)
+
+
+#: Status codes of :func:`first_return` (:class:`pendulab.core.methods.Status`, as plain ints).
+FOUND, NO_RETURN, LEFT_OSCILLATION, TOO_EARLY = (
+    int(s) for s in (Status.FOUND, Status.NO_RETURN, Status.LEFT_OSCILLATION, Status.TOO_EARLY)
+)
+#: :func:`return_rule`'s code of a step that decides nothing.
+UNDECIDED = -1
+
+
+@njit(cache=True, nogil=True, inline="always")
+def return_rule(i, n, z1n, z2, z2n):
+    """``(status, j)``: what step ``i`` (``Z_i -> Z_{i+1}``) of a search of ``n`` steps decides.
+
+    The first return to ``P = (alpha, 0)`` (problem 3) is the first ``j`` with
+    ``z2_j > 0 >= z2_{j+1}`` and ``z1_{j+1} > 0``, the sign change of ``theta'`` from + to -
+    at the top of the swing: ``FOUND`` at ``j = i``, ``TOO_EARLY`` where ``j < 2`` (no
+    ``Z_{j-2}``), ``NO_RETURN`` with ``j = n`` where ``Z_{j+2}`` lies beyond the ``n`` steps.
+    ``|z1_{i+1}| >= pi`` (or NaN) comes first: ``LEFT_OSCILLATION`` at ``j = i``. Otherwise
+    ``UNDECIDED``. The one statement of the rule, for :func:`search_return` and the sweep's
+    lock-step lanes (each loop ends its own steps). Its branches only choose constants:
+    LLVM turns them into selects, so the lanes' loop that tests every lane still
+    vectorises, and the scalar loop still skips the rest after the first failed test.
+    """
+    if not abs(z1n) < math.pi:
+        return LEFT_OSCILLATION, i
+    if z2 > 0.0 and z2n <= 0.0 and z1n > 0.0:
+        if i < 2:
+            return TOO_EARLY, i
+        if i + 2 > n:
+            return NO_RETURN, n
+        return FOUND, i
+    return UNDECIDED, i
+
+
+@njit(cache=True, nogil=True)
+def first_return(method, order, alpha, c, h, n):
+    """Stream the integrator of kernel code ``method`` until the first return to ``P = (alpha, 0)``,
+    keeping 5 points only.
+
+    Looks for the first ``j`` with ``z2_j > 0 >= z2_{j+1}`` and ``z1_{j+1} > 0``: the
+    sign change of ``theta'`` from + to - at the top of the swing. Returns
+    ``(status, j, z1w, z2w)`` where the window holds ``Z_{j-2} .. Z_{j+2}`` when found
+    (zeros otherwise). The search itself is :func:`search_return`, all ``n`` steps at once.
+    """
+    z1w = np.empty(5)  # np.empty, not np.zeros: the one allocator taylor_step compiles already
+    z2w = np.empty(5)
+    for k in range(5):
+        z1w[k] = 0.0
+        z2w[k] = 0.0
+    z1w[2] = alpha
+    status, j = search_return(method, order, c, h, n, 0, n, z1w, z2w)
+    if status != FOUND:
+        for k in range(5):
+            z1w[k] = 0.0
+            z2w[k] = 0.0
+    return status, j, z1w, z2w
+
+
+@njit(cache=True, nogil=True)
+def search_return(method, order, c, h, n, lo, hi, z1w, z2w):
+    """Steps ``lo .. hi - 1`` (of ``n``) of :func:`first_return`'s search; returns ``(status, j)``.
+
+    On entry ``z1w[0:3], z2w[0:3]`` hold ``Z_{lo-2}, Z_{lo-1}, Z_lo`` (zeros before ``Z_0 =
+    (alpha, 0)``). Where the search goes on (``NO_RETURN`` with ``hi < n``) they hold
+    ``Z_{hi-2} .. Z_hi`` on return, so that the next piece resumes it: the same steps, bit
+    for bit, as one call with ``lo = 0, hi = n``. Where found, the window holds
+    ``Z_{j-2} .. Z_{j+2}`` (the step after ``hi`` is taken for ``Z_{j+2}``).
+    The two points before ``Z_i`` are kept in scalars (registers), not in an array.
+    One call of ``step`` and one exit (the loop runs one step past ``j`` for
+    ``Z_{j+2}``): ``step`` is inlined once, which shortens the compilation.
+    """
+    a2, a1, z1 = z1w[0], z1w[1], z1w[2]  # Z_{i-2}, Z_{i-1}, Z_i
+    b2, b1, z2 = z2w[0], z2w[1], z2w[2]
+    status, j = NO_RETURN, n
+    for i in range(lo, n):
+        if i == hi and status == NO_RETURN:  # the end of this piece
+            break
+        z1n, z2n = step(method, order, z1, z2, h, c)
+        if status == FOUND:  # i = j + 1: Z_{j+2}
+            z1w[4] = z1n
+            z2w[4] = z2n
+            break
+        decided, jj = return_rule(i, n, z1n, z2, z2n)
+        if decided != UNDECIDED:
+            status, j = decided, jj
+            if decided != FOUND:  # over the top, too early, or Z_{j+2} beyond t_max
+                break
+            z1w[0], z1w[1], z1w[2], z1w[3] = a2, a1, z1, z1n
+            z2w[0], z2w[1], z2w[2], z2w[3] = b2, b1, z2, z2n
+        a2, b2 = a1, b1
+        a1, b1 = z1, z2
+        z1, z2 = z1n, z2n
+    if status == NO_RETURN:
+        z1w[0], z1w[1], z1w[2] = a2, a1, z1
+        z2w[0], z2w[1], z2w[2] = b2, b1, z2
+    return status, j
+
+
+def first_return_pieces(method, order, alpha, c, h, n):
+    """:func:`first_return` of :func:`kernel_code`'s code for the method of code ``method`` (a
+    :class:`~pendulab.core.methods.Kernel`), run in pieces of :func:`search_return` (the same
+    result, bit for bit): a signal stops it between two pieces (:func:`pendulab.core.interrupt.run_pieces`)."""
+    code = kernel_code(method, c, h)
+    z1w = np.zeros(5)
+    z2w = np.zeros(5)
+    z1w[2] = alpha
+    out = [NO_RETURN, n]
+
+    def run(lo, hi):
+        out[:] = search_return(code, order, c, h, n, lo, hi, z1w, z2w)
+        return out[0] != NO_RETURN  # found, or stopped for good
+
+    run_pieces(pieces(n, piece_steps(code, order)), run)
+    status, j = out
+    if status != FOUND:
+        z1w[:] = 0.0
+        z2w[:] = 0.0
+    return status, j, z1w, z2w
+
+
+@njit(cache=True, nogil=True, parallel=True)
+def agm_means(x, of_angle, iterations, rtol):
+    """``pendulab.engine.mean.agm(b0, iterations, rtol)[0]`` for each ``b0 = x_i``, or
+    ``b0 = cos(x_i/2)`` where ``of_angle``: the one loop of (7), compiled (:data:`agm`)."""
+    out = np.empty(x.size)
+    for i in prange(x.size):
+        b0 = math.cos(0.5 * x[i]) if of_angle else x[i]
+        out[i] = agm(b0, iterations, rtol)[0]
+    return out

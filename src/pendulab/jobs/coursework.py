@@ -1,0 +1,112 @@
+"""The coursework programs: short, literal Python files a student hands in.
+
+The files in ``programs/`` (package data, not a package) answer the coursework's problems
+with the standard library, numpy, scipy and mpmath only, never this package: the report
+runs them for its coursework numbers and prints them whole, ``pendulab programs`` writes
+them out, and the tests check the engine against them. Each runs as ``python FILE
+[STUDENT ...]`` from the folder that holds them all (a problem's program imports the
+shared methods ``agm``, ``taylor`` and ``length`` beside it).
+
+The Portuguese set differs from the English one in its comments and docstrings only:
+``programs/pt.json`` maps each such English line to its translation.
+"""
+from __future__ import annotations
+
+import functools
+import importlib
+import json
+import os
+import sys
+from importlib import resources
+from pathlib import Path
+from types import ModuleType
+
+from ..core.errors import InputError
+
+#: The programs in the order the report prints them: shared methods first.
+PROGRAMS = ("length.py", "agm.py", "taylor.py", "problem1.py", "problem2.py", "problem3.py",
+            "problem4.py", "problem5.py")
+#: How to run each one (the appendix's header line).
+USAGE = {
+    "length.py": "python length.py [STUDENT ...]",
+    "agm.py": "python agm.py [STUDENT ...]",
+    "taylor.py": "python taylor.py",
+    "problem1.py": "python problem1.py",
+    "problem2.py": "python problem2.py",
+    "problem3.py": "python problem3.py [STUDENT ...]",
+    "problem4.py": "python problem4.py",
+    "problem5.py": "python problem5.py",
+}
+LANGUAGES = ("en", "pt")
+
+
+def _folder():
+    return resources.files("pendulab").joinpath("programs")
+
+
+@functools.cache
+def _translations(lang: str) -> dict[str, str]:
+    if lang == "en":
+        return {}
+    return json.loads(_folder().joinpath(f"{lang}.json").read_text(encoding="utf-8"))
+
+
+def source(name: str, lang: str = "en") -> str:
+    """The text of program ``name`` in ``lang``: comment and docstring lines translated."""
+    if name not in PROGRAMS:
+        raise InputError("name", name, "one of " + ", ".join(PROGRAMS))
+    if lang not in LANGUAGES:
+        raise InputError("lang", lang, "one of " + ", ".join(LANGUAGES))
+    text = _folder().joinpath(name).read_text(encoding="utf-8")
+    table = _translations(lang)
+    if not table:
+        return text
+    out = []
+    for line in text.splitlines(keepends=True):
+        body = line.rstrip("\n")
+        out.append(table.get(body, body) + line[len(body):])
+    return "".join(out)
+
+
+def write(folder: str | os.PathLike, lang: str = "en") -> list[Path]:
+    """Write every program into ``folder`` (created if missing), each file atomically."""
+    from ..core.atomic import write_text
+    from ..core.inputs import path_text, shown
+
+    if lang not in LANGUAGES:
+        raise InputError("lang", lang, "one of " + ", ".join(LANGUAGES))
+    allowed = "a folder to write the programs into (created if missing, inside a folder that exists)"
+    out = Path(path_text("output", folder, allowed))
+    paths = []
+    try:
+        if out.exists() and not out.is_dir():
+            raise InputError("output", shown(str(folder)), allowed + "; this is a file")
+        out.mkdir(exist_ok=True)  # one level, as mkdir does: a mistyped path is refused, not built
+        for name in PROGRAMS:
+            write_text(out / name, source(name, lang))
+            paths.append(out / name)
+    except OSError as exc:  # not writable, a name too long, and the like
+        raise InputError("output", shown(str(folder)), f"{allowed} ({exc.strerror})") from None
+    return paths
+
+
+@functools.cache
+def load() -> dict[str, ModuleType]:
+    """The programs imported as modules, by file name (``"problem3.py"``).
+
+    Imported from their own folder, as ``python problem3.py`` would import its siblings;
+    their names (``agm``, ``taylor``, ...) are taken out of ``sys.modules`` and
+    ``sys.path`` again afterwards, and any module of the same name put back.
+    """
+    with resources.as_file(_folder()) as folder:
+        names = [p.removesuffix(".py") for p in PROGRAMS]
+        saved = {n: sys.modules.pop(n) for n in names if n in sys.modules}
+        sys.path.insert(0, str(folder))
+        try:
+            modules = {f"{n}.py": importlib.import_module(n) for n in names}
+        finally:
+            sys.path.remove(str(folder))
+            for n in names:
+                sys.modules.pop(n, None)
+            sys.modules.update(saved)
+    return modules

@@ -1,0 +1,380 @@
+"""The teacher's answer key: every group's answers to problem 3, and the common answers once.
+
+Each group's pendulum length comes from its student numbers (problem 3(b)), so problem 3
+differs between groups; problems 1, 2, 4 and 5 do not. :func:`answer_key` computes both
+from :mod:`pendulab.jobs.problems` as plain data; :func:`pendulab.report.key.write_key` writes it
+as CSV, JSON or a PDF table.
+"""
+from __future__ import annotations
+
+import math
+import os
+import sys
+from collections.abc import Sequence
+from dataclasses import dataclass
+from decimal import Decimal
+from pathlib import Path
+from typing import Any, Literal
+
+from ..core import inputs
+from ..core.errors import InputError
+from ..numerics.period import FIXED_ITERATIONS_ULPS
+
+#: Output formats by file extension.
+FORMATS = ("csv", "json", "pdf")
+#: The largest groups file read (a class of thousands of groups is a few hundred kB):
+#: a file that is not a regular file (a pipe, a device) is read up to this many bytes too.
+MAX_FILE_BYTES = 10**7
+#: The most groups in one key (a class is tens of groups). Each costs about 6 ms of CPU and
+#: 3 kB of PDF (``benchmarks/key_cost.py --groups 20``: 5.6 ms, 2.9 kB): 1000 groups about 6 s.
+MAX_GROUPS = 1000
+#: Seconds a pipe or device may stay silent while its groups are read (a named pipe that
+#: no program writes to is empty at once; a terminal, or a writer that never writes, waits).
+READ_TIMEOUT = 10.0
+
+
+#: A line's names follow its numbers after this separator: ``262, 407, 634 | Ana; João; Maria``.
+NAMES_SEPARATOR = "|"
+
+
+@dataclass(frozen=True)
+class Entry:
+    """One group of the class: its student numbers, their names (optional) and its line."""
+
+    students: tuple[int, ...]
+    names: tuple[str, ...] | None = None
+    line: int | None = None
+
+
+def parse_entries(text: str, source: str = "groups") -> list[Entry]:
+    """One group per line: student numbers separated by commas or spaces, then optionally
+    ``|`` and the students' names separated by ``;``, one per number, in their order.
+
+    Blank lines and ``#`` comments (whole lines or line ends) are skipped. A bad line
+    raises :class:`~pendulab.core.errors.InputError` naming ``source`` and its line number;
+    a file with no group at all is refused too.
+    """
+    from ..numerics.group import group_length
+
+    entries: list[Entry] = []
+    text = text.removeprefix("\ufeff")  # the byte order mark that Notepad and Excel write
+    for number, raw in enumerate(text.splitlines(), start=1):
+        line = raw.split("#", 1)[0].strip()
+        if not line:
+            continue
+        if len(entries) == MAX_GROUPS:
+            raise InputError("groups", source, f"a file of at most {MAX_GROUPS} groups (line {number} "
+                                               f"starts group {MAX_GROUPS + 1}); split the class into several keys")
+        numbers, sep, names_text = line.partition(NAMES_SEPARATOR)
+        try:
+            students = inputs.students("groups", numbers.strip())  # the CLI's grammar of student numbers
+            group_length(students)
+            names = inputs.names("groups", names_text, len(students)) if sep else None
+        except InputError as exc:
+            raise InputError("groups", f"{source} line {number}: {inputs.shown(raw.strip())}", exc.allowed) from None
+        entries.append(Entry(students, names, number))
+    if not entries:
+        raise InputError("groups", source, "a file with at least one group (one line of student numbers)")
+    return entries
+
+
+def parse_groups(text: str, source: str = "groups") -> list[tuple[int, ...]]:
+    """The student numbers of each group of ``text`` (see :func:`parse_entries`)."""
+    return [e.students for e in parse_entries(text, source)]
+
+
+def read_entries(path: str | os.PathLike) -> list[Entry]:
+    """The groups of the file ``path`` (see :func:`parse_entries`); ``-`` is standard input.
+
+    Whatever ``path`` is, at most :data:`MAX_FILE_BYTES` bytes are read: a regular file
+    is refused by its size, a pipe or a device (``/dev/zero``) once it gives more; a named
+    pipe is opened without waiting for a writer, and one that stays silent for
+    :data:`READ_TIMEOUT` seconds is refused. A UTF-8 byte order mark is skipped.
+    """
+    shown = inputs.shown(str(path))
+    try:
+        data = _read_capped(str(path))
+        text = data.decode("utf-8")
+    except TimeoutError:  # an OSError: told first
+        raise InputError("groups", shown, f"a file that can be read (nothing came in {READ_TIMEOUT:g} s)") from None
+    except (OSError, UnicodeDecodeError) as exc:
+        reason = exc.strerror if isinstance(exc, OSError) and exc.strerror else type(exc).__name__
+        raise InputError("groups", shown, f"a readable UTF-8 text file ({reason})") from None
+    except _TooBig:
+        raise InputError("groups", shown, f"a file of at most {MAX_FILE_BYTES:.0e} bytes") from None
+    return parse_entries(text, str(path))
+
+
+class _TooBig(Exception):
+    """More than :data:`MAX_FILE_BYTES` bytes."""
+
+
+def _read_capped(path: str) -> bytes:
+    """At most :data:`MAX_FILE_BYTES` bytes of ``path`` (``-``: standard input), see :func:`read_groups`."""
+    import select
+    import stat
+
+    if path == "-":
+        data = sys.stdin.buffer.read(MAX_FILE_BYTES + 1)
+        if len(data) > MAX_FILE_BYTES:
+            raise _TooBig
+        return data
+    fd = os.open(path, os.O_RDONLY | os.O_NONBLOCK)  # a named pipe: no wait for a writer
+    try:
+        st = os.fstat(fd)
+        if stat.S_ISDIR(st.st_mode):
+            raise IsADirectoryError(21, "a folder, not a file")
+        if stat.S_ISREG(st.st_mode):
+            if st.st_size > MAX_FILE_BYTES:  # by its size, before reading it
+                raise _TooBig
+            os.set_blocking(fd, True)
+        chunks: list[bytes] = []
+        size = 0
+        while size <= MAX_FILE_BYTES:
+            try:
+                chunk = os.read(fd, min(1 << 20, MAX_FILE_BYTES + 1 - size))
+            except BlockingIOError:  # a pipe or device with nothing to read yet
+                if not select.select([fd], [], [], READ_TIMEOUT)[0]:
+                    raise TimeoutError from None
+                continue
+            if not chunk:
+                return b"".join(chunks)
+            chunks.append(chunk)
+            size += len(chunk)
+        raise _TooBig
+    finally:
+        os.close(fd)
+
+
+def read_groups(path: str | os.PathLike) -> list[tuple[int, ...]]:
+    """The student numbers of each group of the file ``path``."""
+    return [e.students for e in read_entries(path)]
+
+
+def duplicates(entries: Sequence[Entry]) -> dict[int, int]:
+    """``{line: line of its first listing}`` for every group listed again (the same student
+    numbers, in any order)."""
+    first: dict[tuple[int, ...], int] = {}
+    out = {}
+    for i, e in enumerate(entries, start=1):
+        line = e.line if e.line is not None else i
+        key = tuple(sorted(e.students))
+        if key in first:
+            out[line] = first[key]
+        else:
+            first[key] = line
+    return out
+
+
+def listed_again(entries: Sequence[Entry]) -> list[tuple[tuple[int, ...], list[int]]]:
+    """Each group listed more than once: its student numbers and every line that lists it
+    (the first listing's first), in the order of the first listings. Empty when none is."""
+    lines: dict[int, list[int]] = {}
+    for line, first in duplicates(entries).items():
+        lines.setdefault(first, [first]).append(line)
+    by_line = {(e.line if e.line is not None else i): e for i, e in enumerate(entries, start=1)}
+    return [(by_line[first].students, ls) for first, ls in lines.items()]
+
+
+def output_format(path: str | os.PathLike) -> str:
+    """``csv``, ``json`` or ``pdf`` from the extension of ``path``."""
+    ext = Path(path).suffix.lower().lstrip(".")
+    if ext not in FORMATS:
+        raise InputError("output", inputs.shown(str(path)), "a file name ending in .csv, .json or .pdf")
+    return ext
+
+
+def class_path(output: str | os.PathLike) -> Path:
+    """Where the class-wide CSV goes beside the per-group ``output``: ``key.csv`` -> ``key-class.csv``."""
+    p = Path(output)
+    return p.with_name(f"{p.stem}-class{p.suffix}")
+
+
+#: How an answer is compared with the key: equal (``exactly``), within a ``relative`` or an
+#: ``absolute`` difference of ``value``, an interval that ``contains`` the key's value, or
+#: ``any`` value (rounding noise). The words are the catalogues' ``key.kind.*``.
+Kind = Literal["exactly", "relative", "absolute", "contains", "any"]
+
+
+@dataclass(frozen=True)
+class Tolerance:
+    """The agreement with the key that a correct program reaches for one answer.
+
+    ``kind`` and ``value`` (with its ``unit``) are the rule; ``reason`` is the code of why a
+    correct program reaches it (the catalogues' ``key.reason.*``, filled with ``ulps``).
+    """
+
+    answer: str
+    kind: Kind
+    value: float | None
+    unit: str
+    reason: str
+
+    def to_dict(self) -> dict[str, Any]:
+        return {"answer": self.answer, "kind": self.kind, "value": self.value, "unit": self.unit,
+                "reason": self.reason}
+
+
+#: What a correct program must reach for each answer, so that a teacher marks without
+#: guessing. The 3(c)-(d) figures are met by an independent plain-Python program of the
+#: coursework's formulas (tests/test_key.py checks it against them).
+TOLERANCES: tuple[Tolerance, ...] = (
+    Tolerance("1(b) g", "relative", 1e-14, "", "few_roundings"),
+    Tolerance("1(b) |e_g|, |e_g|/|g| and the corner extremes", "relative", 1e-12, "", "few_products"),
+    Tolerance("1(b) significant digits", "exactly", None, "", "integer"),
+    Tolerance("2 interval [a, b]", "contains", None, "", "any_interval"),
+    Tolerance("2 alpha", "absolute", 1e-15, "rad", "newton_rounding"),
+    Tolerance("2 q_k for k <= k_max", "relative", 1e-2, "", "q_rounding_bound"),
+    Tolerance("2 q_k for k > k_max", "any", None, "", "rounding_noise"),
+    Tolerance("3(b) sum, its non-zero digits, l", "exactly", None, "", "length_rule"),
+    Tolerance("3(b) T^ (8), 7 iterations", "relative", 1e-15, "", "agm_order"),
+    Tolerance("3(b) h = 0.2: outcome, j, bracket, T^ inside", "exactly", None, "", "grid_times"),
+    Tolerance("3(c) j and bracket for each h", "exactly", None, "", "grid_times"),
+    Tolerance("3(c) T linear, T = p(0) and their errors", "absolute", 1e-11, "s", "taylor_rounding"),
+    Tolerance("3(c) observed orders", "absolute", 0.01, "", "logarithms"),
+    Tolerance("3(d) nodes x_k = z_(2,j-1+k)", "relative", 1e-11, "", "same_taylor_steps"),
+    Tolerance("3(d) Newton coefficients", "relative", 1e-9, "", "divided_differences"),
+    Tolerance("3(d) error estimate", "absolute", 1e-13, "s", "cancellation"),
+    Tolerance("3(d) negligible?", "exactly", None, "", "yes_no"),
+    Tolerance("4 normal equations A, r (6 decimals)", "exactly", None, "", "six_decimals"),
+    Tolerance("4 coefficients", "absolute", 1e-10, "", "stable_solver"),
+    Tolerance("4 SSD E(c)", "relative", 1e-8, "", "sum_of_squares"),
+    Tolerance("4 max deviation", "absolute", 1e-10, "", "data_deviations"),
+    Tolerance("5 S_n for every n", "relative", 1e-12, "", "long_sums"),
+    Tolerance("5 errors and rates", "relative", 1e-6, "", "differences_and_logarithms"),
+)
+#: The number the reasons' words are filled with (``agm_order``: the bound on ``T^``'s rounding).
+REASON_VALUES = {"ulps": FIXED_ITERATIONS_ULPS}
+
+
+def tolerance(answer: str) -> Tolerance:
+    """The tolerance of the answer named ``answer`` (see :data:`TOLERANCES`)."""
+    return next(t for t in TOLERANCES if t.answer == answer)
+
+
+@dataclass(frozen=True, eq=False)
+class AnswerKey:
+    """The answers of every group (problem 3) and the common ones (problems 1, 2, 4, 5)."""
+
+    common: dict[str, Any]
+    groups: list[dict[str, Any]]
+
+    def to_dict(self) -> dict[str, Any]:
+        """The key as plain data: the answers and the marking tolerances (codes; the words are
+        the presenters', :func:`pendulab.report.key.document`)."""
+        return {"common": self.common, "groups": self.groups, "tolerances": [t.to_dict() for t in TOLERANCES]}
+
+
+def _f(x: float | None) -> float | None:
+    return None if x is None or not math.isfinite(x) else float(x)
+
+
+def _time(j: int, h: float) -> float:
+    """``t_j = j h`` as the double nearest to the product of ``j`` and ``h`` as written
+    (``48 * 0.2`` is the double 9.600000000000001; the time is 9.6)."""
+    return float(Decimal(j) * Decimal(repr(h)))
+
+
+def group_answers(students: Sequence[int]) -> dict[str, Any]:
+    """One group's answers to problem 3 as plain data (JSON-ready).
+
+    Times ``t_j`` are given as :func:`_time` (the double nearest to ``j h``).
+    """
+    from . import problems
+
+    r = problems.problem3(students)
+    est = r.plot_estimate
+    h = r.plot.step
+    bracket = None if est is None else [_time(est.j, h), _time(est.j + 1, h)]
+    plot = {
+        "step": h,
+        "outcome": r.plot_outcome,
+        "j": None if est is None else est.j,
+        "bracket": bracket,
+        "t_hat_inside": None if bracket is None else bracket[0] <= r.t_hat <= bracket[1],
+        "left_at": None if r.plot_left_at is None else _time(round(r.plot_left_at / h), h),
+        "t_max": r.plot_t_max,
+    }
+    estimates = [{
+        "step": e.step, "j": e.j, "bracket": [_time(e.j, e.step), _time(e.j + 1, e.step)],
+        "linear": e.linear, "linear_error": abs(e.linear - r.t_hat), "linear_order": _f(lo_),
+        "cubic": e.cubic, "cubic_error": abs(e.cubic - r.t_hat), "cubic_order": _f(co),
+        "cubic_error_estimate": e.cubic_error_estimate,
+    } for e, lo_, co in zip(r.estimates, r.linear_orders, r.cubic_orders)]
+    ip = r.cubic.interpolation
+    c = r.cubic
+    interpolation = {
+        "step": c.step, "j": c.j,
+        "table": [{"node": c.j - 1 + k, "z2": float(ip.z2[k]), "t": _time(c.j - 1 + k, c.step),
+                   "coefficient": float(ip.coefficients[k])} for k in range(4)],
+        "value": ip.value, "error_estimate": ip.error_estimate, "rounding_level": ip.rounding_level,
+        "taylor_error": r.taylor_error, "ratio": _f(r.interpolation_ratio),
+        "negligible": r.interpolation_negligible,
+    }
+    return {
+        "students": list(r.group.numbers), "sum": r.group.sum, "digits": r.group.digits,
+        "length": r.group.length, "length_text": r.group.length_text, "t_hat": r.t_hat,
+        "plot": plot, "estimates": estimates, "interpolation": interpolation,
+    }
+
+
+def _floats(a) -> list:
+    return [[float(x) for x in row] for row in a] if getattr(a, "ndim", 1) == 2 else [float(x) for x in a]
+
+
+def _problem4(p4) -> dict[str, Any]:
+    f = p4.fit
+    return {"t_max": p4.t_max, "points": p4.points, "names": list(f.names), "decimals": f.decimals,
+            "normal_matrix": _floats(f.normal_matrix), "normal_rhs": _floats(f.normal_rhs),
+            "coefficients": _floats(f.coefficients), "ssd": f.ssd, "max_deviation": f.max_deviation,
+            "argmax_deviation": f.argmax_deviation, "below_tolerance": p4.below_tolerance,
+            "tolerance": p4.tolerance}
+
+
+def common_answers() -> dict[str, Any]:
+    """Problems 1, 2, 4 (the coursework's 401 points, and the 601 of ``Y_0 .. Y_600``) and 5,
+    which are the same for every group."""
+    from ..core.cases import PROBLEM4_ALT_T_MAX
+    from . import problems
+
+    p1, p2, p4, p5 = problems.problem1(), problems.problem2(), problems.problem4(), problems.problem5()
+    p4_alt = problems.problem4(t_max=PROBLEM4_ALT_T_MAX)
+    run = p2.run
+    return {
+        "problem1": {"g": p1.g, "dg_dl": p1.dg_dl, "dg_dT": p1.dg_dT, "abs_error": p1.abs_error,
+                     "rel_error": p1.rel_error, "g_min": p1.g_min, "g_max": p1.g_max,
+                     "worst_error": p1.worst_error, "significant_digits": p1.significant_digits,
+                     "g_text": p1.g_text},
+        "problem2": {"interval_degrees": list(p2.interval_degrees), "x0": p2.x0, "alpha": p2.alpha,
+                     "alpha_degrees": p2.alpha_degrees, "iterates": list(run.iterates),
+                     "q": [_f(q) for q in run.q], "q_rounding": list(run.q_rounding),
+                     "k_max": run.k_max, "asymptotic_constant": run.asymptotic_constant,
+                     "error_estimate": run.error_estimate},
+        "problem4": _problem4(p4),
+        "problem4_601": _problem4(p4_alt),
+        "problem5": {"t_hat": p5.t_hat, "single": p5.single, "composite10": p5.composite10,
+                     "rows": [{"n": row.n, "estimate": row.estimate, "error": row.error, "rate": row.rate,
+                               "substitution_estimate": row.substitution_estimate,
+                               "substitution_error": row.substitution_error}
+                              for row in p5.rows]},
+    }
+
+
+def answer_key(groups: Sequence[Sequence[int] | Entry]) -> AnswerKey:
+    """The answer key of ``groups`` (each an :class:`Entry` or a sequence of student numbers).
+
+    Each group's answers carry its ``line`` (in the groups file, else its place in
+    ``groups``), its ``names`` and ``duplicate_of``: the line of its first listing when the
+    same student numbers were listed before (its answers are computed once).
+    """
+    entries = [g if isinstance(g, Entry) else Entry(tuple(g)) for g in groups]
+    entries = [e if e.line is not None else Entry(e.students, e.names, i) for i, e in enumerate(entries, start=1)]
+    dup = duplicates(entries)
+    done: dict[tuple[int, ...], dict[str, Any]] = {}
+    out = []
+    for e in entries:
+        if e.students not in done:
+            done[e.students] = group_answers(e.students)
+        out.append({"line": e.line, "names": None if e.names is None else list(e.names),
+                    "duplicate_of": dup.get(e.line)} | done[e.students])  # type: ignore[arg-type]
+    return AnswerKey(common_answers(), out)

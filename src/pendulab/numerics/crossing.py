@@ -1,0 +1,376 @@
+"""The period recovered from a simulation: sign change of ``theta'``, then interpolation.
+
+Problem 3 of the coursework: the first step ``j`` at which ``z2`` changes sign from
+positive to negative with ``z1 > 0`` (the return to ``P = (alpha, 0)``) brackets the
+period, ``T in [t_j, t_{j+1}]`` (Figure 2); a linear and an inverse cubic interpolation
+(problem 3(d)) of the table ``(z2, t)`` refine it. The search streams: only five points
+are ever kept, so ``h = 1e-7`` needs no memory for the trajectory.
+"""
+from __future__ import annotations
+
+import math
+import sys
+from dataclasses import dataclass
+from typing import Any
+
+import numpy as np
+
+from ..core import validate as v
+from ..core.cases import G
+from ..core.errors import InputError, LeftOscillationError, NoReturnError, NumericalError
+from ..core.methods import Status, resolve
+from .dense import dense_crossing
+from .interpolation import InverseInterpolation, inverse_cubic, linear_zero
+from .period import agm_period
+from .results import Result
+from .simulation import MAX_STEPS
+
+
+@dataclass(frozen=True, eq=False)
+class PeriodEstimate(Result):
+    """The period of one simulation, three ways, against the exact one.
+
+    Attributes
+    ----------
+    step : float
+        ``h``.
+    method : str
+        Integrator name.
+    j : int
+        First index with ``z2_j > 0 >= z2_{j+1}`` and ``z1_{j+1} > 0``.
+    bracket : (float, float)
+        ``(t_j - t0, t_{j+1} - t0)``, which contains the simulated period.
+    linear : float
+        The zero of the line through ``(t_j, z2_j)`` and ``(t_{j+1}, z2_{j+1})``.
+    cubic : float
+        ``p(0)`` of the inverse cubic through ``j-1 .. j+2`` (problem 3(d)).
+    cubic_error_estimate : float
+        The interpolation error estimate of ``p(0)`` from the fifth node ``j-2``.
+    interpolation : InverseInterpolation
+        The table, Newton coefficients and the error estimate's parts.
+    period : float
+        The AGM period (8), iterated to convergence.
+    window_t, window_theta, window_omega : ndarray, shape (5,)
+        The points ``j-2 .. j+2`` of the simulation (times relative to ``t0``).
+    dense : float
+        The zero of ``theta'`` on the Taylor series of the flow through the nearer
+        bracket point (:func:`pendulab.numerics.dense.dense_crossing`): the period to the
+        method's own order, where the cubic stops at ``O(h^4)``. An additional
+        estimate; the coursework's is ``cubic``.
+
+    Notes
+    -----
+    ``interpolation.rounding_level`` says how far the rounding of ``t_k = k h`` alone can
+    move ``cubic_error_estimate``; at ``h <= 1e-4`` the estimate is below it
+    (``interpolation.error_estimate_resolved`` is False): it is rounding, not
+    interpolation error.
+    """
+
+    step: float
+    method: str
+    j: int
+    bracket: tuple[float, float]
+    linear: float
+    cubic: float
+    cubic_error_estimate: float
+    interpolation: InverseInterpolation
+    period: float
+    window_t: np.ndarray
+    window_theta: np.ndarray
+    window_omega: np.ndarray
+    dense: float = math.nan
+
+    @property
+    def linear_error(self) -> float:
+        """``|linear - period|``: the error of the linear estimate, s (problem 3(c))."""
+        return abs(self.linear - self.period)
+
+    @property
+    def dense_error(self) -> float:
+        """``|dense - period|``: the error of the dense-output estimate, s."""
+        return abs(self.dense - self.period)
+
+    @property
+    def cubic_error(self) -> float:
+        """``|cubic - period|``: the error of the inverse-cubic estimate ``p(0)``, s (problem 3(c)-(d))."""
+        return abs(self.cubic - self.period)
+
+    @property
+    def cubic_error_estimate_rounding_level(self) -> float:
+        """How far the rounding of ``t_k = k h`` alone moves ``cubic_error_estimate``
+        (``interpolation.rounding_level``): an estimate below it is rounding."""
+        return self.interpolation.rounding_level
+
+
+def default_t_max(exact_period: float, step: float, t0: float = 0.0) -> float:
+    """A ``t_max`` that holds the first return with room to spare: ``t0 + 1.5 T + 4h``.
+
+    Based on (8) as the coursework suggests (problem 3(b)); the margin covers the
+    method's error in the period for any step that still oscillates.
+    """
+    return t0 + 1.5 * exact_period + 4 * step
+
+
+@dataclass(frozen=True, eq=False)
+class PeriodSearch(Result):
+    """The search for the first return to ``P``, as data (scipy's ``OdeResult`` habit).
+
+    A failure that the physics or the step explains (no return within ``t_max``, the
+    discrete pendulum over the top, the return too early for the interpolation nodes) is a
+    ``status`` with the numbers that show it; :func:`estimate_period` raises on it.
+
+    Attributes
+    ----------
+    status : Status
+        ``FOUND``, ``NO_RETURN``, ``LEFT_OSCILLATION`` or ``TOO_EARLY`` (``methods.Status``).
+    estimate : PeriodEstimate or None
+        The estimate where ``status`` is ``FOUND``.
+    length, amplitude, step, g, t0, t_max : float
+        The search's inputs (``t_max`` as used: :func:`default_t_max` when not given).
+    method : str
+        Integrator name.
+    period : float
+        The AGM period (8), iterated to convergence.
+    suggested_t_max : float or None
+        ``NO_RETURN``: a ``t_max`` that holds the return; None where no ``t_max`` helps
+        (``theta'`` changes below the smallest normal double: ``underflow``).
+    underflow : bool
+        ``NO_RETURN`` because ``h (g/l) alpha`` is below the smallest normal double.
+    t_left : float or None
+        ``LEFT_OSCILLATION``: ``t_(j+1)``, the first point with ``|theta| >= pi``.
+    j : int or None
+        The step index the kernel stopped at (None where it did not run).
+    """
+
+    status: Status
+    estimate: PeriodEstimate | None
+    length: float
+    amplitude: float
+    step: float
+    g: float
+    t0: float
+    t_max: float
+    method: str
+    period: float
+    suggested_t_max: float | None = None
+    underflow: bool = False
+    t_left: float | None = None
+    j: int | None = None
+
+    @property
+    def found(self) -> bool:
+        return self.status == Status.FOUND
+
+
+def search_period(
+    length: float,
+    amplitude: float,
+    step: float,
+    t_max: float | None = None,
+    t0: float = 0.0,
+    g: float = G,
+    method: str = "taylor2",
+) -> PeriodSearch:
+    """The period from the simulation (3) by sign change and interpolation, failure as a status.
+
+    Parameters as :func:`estimate_period`; bad input raises :class:`InputError`, and an
+    outcome without a period (no return, over the top) is :attr:`PeriodSearch.status`.
+    """
+    length = v.positive("length", length)
+    alpha = v.amplitude("amplitude", amplitude)
+    g = v.positive("g", g)
+    step = v.positive("step", step)
+    t0 = v.finite("t0", t0)
+    if alpha == 0:
+        raise InputError("amplitude", amplitude, "> 0 for a period from a simulation (at rest nothing moves)")
+    exact = agm_period(length, alpha, g)
+    if t_max is None:
+        t_max = default_t_max(exact, step, t0)
+    t0, t_max, step = v.time_span(t0, t_max, step)
+    m = resolve(method)
+    n = v.steps_within("step", t0, t_max, step, v.steps_for(m, MAX_STEPS), v.steps_of(m))
+    from ..engine.kernels import first_return_pieces
+
+    c = -g / length
+    common: dict[str, Any] = {"estimate": None, "length": length, "amplitude": alpha, "step": step, "g": g,
+                              "t0": t0, "t_max": t_max, "method": method, "period": float(exact)}
+    if alpha * abs(c) * step < sys.float_info.min:
+        # theta' changes by about h (g/l) sin(theta) per step: below the smallest normal
+        # double its changes are lost to underflow (5e-324 never moves theta' at all).
+        return PeriodSearch(Status.NO_RETURN, underflow=True, **common)
+    status, j, z1w, z2w = first_return_pieces(int(m.code), m.order, alpha, c, step, n)
+    status = Status(int(status))
+    if status == Status.NO_RETURN:
+        suggest = default_t_max(exact, step, t0)
+        if suggest <= t_max:
+            suggest = t0 + 2 * (t_max - t0)
+        return PeriodSearch(status, suggested_t_max=suggest, j=int(j), **common)
+    if status == Status.LEFT_OSCILLATION:
+        # t_{j+1} of (6): the first point with |theta| >= pi
+        return PeriodSearch(status, t_left=t0 + (j + 1) * step, j=int(j), **common)
+    if status != Status.FOUND:
+        return PeriodSearch(status, j=int(j), **common)
+    # Times relative to t0, t_k = k h (6): the nodes j-2 .. j+2.
+    t = (j - 2 + np.arange(5)) * step
+    z2_j, z2_j1 = z2w[2], z2w[3]
+    linear = linear_zero(t[2], step, z2_j, z2_j1)
+    interp = inverse_cubic(z2w[1:5], t[1:5], (z2w[0], t[0]))
+    dense = dense_crossing((z1w[2], z1w[3]), (z2w[2], z2w[3]), c, step, float(t[2]))
+    est = PeriodEstimate(
+        step=step,
+        method=method,
+        j=int(j),
+        bracket=(float(t[2]), float(t[3])),
+        linear=float(linear),
+        cubic=interp.value,
+        cubic_error_estimate=interp.error_estimate,
+        interpolation=interp,
+        period=float(exact),
+        window_t=t,
+        window_theta=z1w.copy(),
+        window_omega=z2w.copy(),
+        dense=float(dense),
+    )
+    common["estimate"] = est
+    return PeriodSearch(status, j=int(j), **common)
+
+
+def estimate_period(
+    length: float,
+    amplitude: float,
+    step: float,
+    t_max: float | None = None,
+    t0: float = 0.0,
+    g: float = G,
+    method: str = "taylor2",
+) -> PeriodEstimate:
+    """Estimate the period from the simulation (3) by sign change and interpolation.
+
+    :func:`search_period`, raising where it finds no period.
+
+    Parameters
+    ----------
+    length, amplitude, step, t0, g, method
+        As :func:`pendulab.numerics.simulation.simulate`.
+    t_max : float, optional
+        End of the simulated interval; default :func:`default_t_max`.
+
+    Returns
+    -------
+    PeriodEstimate
+
+    Raises
+    ------
+    NoReturnError
+        The simulation does not come back to ``P`` within ``t_max`` (the message names
+        a ``t_max`` that works).
+    LeftOscillationError
+        The discrete pendulum went over the top: the step is too large for the amplitude.
+    """
+    s = search_period(length, amplitude, step, t_max, t0, g, method)
+    if s.estimate is not None:
+        return s.estimate
+    raise search_error(s)
+
+
+def search_error(s: PeriodSearch) -> NumericalError:
+    """The exception for a search without a period, its message naming what to change."""
+    alpha, step, t_max = s.amplitude, s.step, s.t_max
+    if s.underflow:
+        k = s.g / s.length
+        return NoReturnError(
+            f"amplitude {alpha:.3g} rad is too small for a simulation in double precision: theta' changes by "
+            f"about h (g/l) alpha = {k * step:.3g} x {alpha:.3g} rad/s per step, below the smallest normal double "
+            f"{sys.float_info.min:.3g}, so its sign changes are lost to underflow; use an amplitude >= "
+            f"{sys.float_info.min / (k * step):.3g} rad at this step (no t_max helps)"
+        )
+    if s.status == Status.NO_RETURN:
+        return NoReturnError(
+            f"the simulation does not return to P = (alpha, 0) within t_max = {t_max:g} s "
+            f"(period T = {s.period:.6g} s by the AGM (8)); t_max = {s.suggested_t_max:.4g} s holds the return",
+            t_max=t_max, suggested_t_max=s.suggested_t_max,
+        )
+    if s.status == Status.LEFT_OSCILLATION:
+        return LeftOscillationError(
+            f"the discrete pendulum went over the top (|theta| > pi) at t = {s.t_left:.6g} s: "
+            f"step h = {step:g} is too large for amplitude {alpha:.6g} rad with method {s.method}; use a smaller step",
+            t=s.t_left,
+        )
+    return NumericalError(
+        f"the sign change of theta' comes at step j = {s.j}, too early for four interpolation nodes: "
+        f"step h = {step:g} is too large; use a smaller step"
+    )
+
+
+def observed_orders(steps: list[float], errors: list[float]) -> list[float | None]:
+    """``log(e_{i-1}/e_i) / log(h_{i-1}/h_i)`` between consecutive rows (None for the first)."""
+    out: list[float | None] = [None]
+    for (h0, e0), (h1, e1) in zip(zip(steps, errors), zip(steps[1:], errors[1:])):
+        ok = e0 > 0 and e1 > 0 and h0 != h1
+        out.append(math.log(e0 / e1) / math.log(h0 / h1) if ok else None)
+    return out
+
+
+@dataclass(frozen=True, eq=False)
+class PeriodEstimates(Result):
+    """The period of one pendulum from simulations with several steps (problem 3(c)-(d)).
+
+    Attributes
+    ----------
+    length, amplitude, g : float
+    method : str
+    period : float
+        The AGM period (8) to convergence: every error's reference.
+    rows : tuple of PeriodEstimate
+        One per step, in the order given.
+    linear_orders, cubic_orders : tuple of float or None
+        The observed order of each row's error against the row before (None for the first).
+    """
+
+    length: float
+    amplitude: float
+    g: float
+    method: str
+    period: float
+    rows: tuple[PeriodEstimate, ...]
+    linear_orders: tuple[float | None, ...]
+    cubic_orders: tuple[float | None, ...]
+
+    def to_dict(self) -> dict[str, Any]:
+        """The fields, each row with its two observed orders (``linear_order``, ``cubic_order``)."""
+        d = super().to_dict()
+        lin, cub = d.pop("linear_orders"), d.pop("cubic_orders")
+        d["rows"] = [row | {"linear_order": lo, "cubic_order": co} for row, lo, co in zip(d["rows"], lin, cub)]
+        return d
+
+
+def estimate_periods(
+    length: float,
+    amplitude: float,
+    steps: list[float],
+    t_max: float | None = None,
+    g: float = G,
+    method: str = "taylor2",
+) -> PeriodEstimates:
+    """:func:`estimate_period` for each of ``steps``, and the observed orders of the errors.
+
+    The work of the whole list, weighed by the method's cost, is checked before the first
+    run: at most what one run may take (``MAX_STEPS`` steps of (3)), blaming the step that
+    needs the most. A step whose own run is beyond one run's limit is left to
+    :func:`estimate_period`'s message (which offers ``t_max`` too).
+    """
+    period = agm_period(length, amplitude, g)
+    work = [(default_t_max(period, h) if t_max is None else float(t_max)) / h for h in steps]
+    if all(math.isfinite(w) and w <= v.steps_for(method, MAX_STEPS) for w in work):
+        v.work_within("steps", max(zip(work, steps))[1], sum(work), method, MAX_STEPS)
+    rows = tuple(estimate_period(length, amplitude, h, t_max, 0.0, g, method) for h in steps)
+    return PeriodEstimates(
+        length=float(length),
+        amplitude=float(amplitude),
+        g=float(g),
+        method=method,
+        period=rows[0].period,
+        rows=rows,
+        linear_orders=tuple(observed_orders(list(steps), [r.linear_error for r in rows])),
+        cubic_orders=tuple(observed_orders(list(steps), [r.cubic_error for r in rows])),
+    )
