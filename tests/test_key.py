@@ -20,7 +20,7 @@ from hypothesis import strategies as st
 import plain_pendulum as plain
 from pendulab.cli import main
 from pendulab.core.errors import InputError
-from pendulab.jobs.key import answer_key, parse_entries, parse_groups, tolerance
+from pendulab.jobs.key import answer_key, parse_entries, parse_groups, repeated_students, tolerance
 from pendulab.numerics.period import FIXED_ITERATIONS_ULPS
 from reference import G
 
@@ -124,6 +124,58 @@ def test_parse_groups_with_names():
     entries = parse_entries(text)
     assert [(e.students, e.names, e.line) for e in entries] == [
         ((262, 407, 634), ("Ana Sá", "João Simões", "Ζωή"), 1), ((1, 2), None, 2), ((3, 4), ("Ольга", "李明"), 3)]
+
+
+@pytest.mark.parametrize("text", [
+    "students;names\n262;407;634;Ana Sá;João Simões;Maria Luís\n",
+    "números,nomes\n262,407,634,Ana Sá,João Simões,Maria Luís\n",
+    '"262 407 634","Ana Sá; João Simões; Maria Luís"\n',
+    "262 407 634;Ana Sá;João Simões;Maria Luís;;;\n",
+    "\ufeffstudents\n262 407 634 | Ana Sá; João Simões; Maria Luís\n",
+])
+def test_groups_as_spreadsheets_write_them(text):
+    [e] = parse_entries(text)
+    assert e.students == (262, 407, 634) and e.names == ("Ana Sá", "João Simões", "Maria Luís")
+
+
+def test_groups_semicolons_and_padding():
+    text = "alunos\n262;407;634\n99999;1;;\n;;;\n"
+    assert parse_groups(text) == [(262, 407, 634), (99999, 1)]
+
+
+def test_header_only_first():
+    with pytest.raises(InputError) as exc:
+        parse_groups("262 407\nstudents\n", "g.txt")
+    assert "g.txt line 2:" in str(exc.value.value)
+
+
+def test_repeated_students_within_and_across():
+    entries = parse_entries("12121, 21212, 12121\n262 407 634\n407 5\n634 407 262\n")
+    got = {(r.student, r.line): (r.within, r.other_lines) for r in repeated_students(entries)}
+    assert got == {(12121, 1): (2, ()), (407, 2): (1, (3,)), (407, 3): (1, (2,)), (407, 4): (1, (3,))}
+    k = answer_key(entries[:1])
+    assert k.groups[0]["repeated"] == [{"student": 12121, "line": 1, "within": 2, "other_lines": []}]
+
+
+_NAME = st.text(alphabet="abcçãéíóú ÁBZ", min_size=1, max_size=8).map(lambda s: " ".join(s.split())).filter(bool)
+
+
+@settings(max_examples=80, deadline=None)
+@given(st.lists(st.tuples(st.lists(st.integers(1, 10**7), min_size=1, max_size=4), st.booleans()), min_size=1, max_size=5),
+       st.sampled_from([";", ",", "|"]), st.booleans(), st.data())
+def test_groups_with_names_round_trip(rows, delimiter, header, data):
+    lines = ["students" + (f"{delimiter}names" if delimiter != "|" else "")] if header else []
+    want = []
+    for numbers, named in rows:
+        names = [data.draw(_NAME) for _ in numbers] if named else None
+        if delimiter == "|":
+            line = ", ".join(map(str, numbers)) + (" | " + "; ".join(names) if names else "")
+        else:
+            line = delimiter.join(map(str, numbers + (names or [])))
+        lines.append(line)
+        want.append((tuple(numbers), None if names is None else tuple(names)))
+    got = [(e.students, e.names) for e in parse_entries("\n".join(lines))]
+    assert got == want
 
 
 @pytest.mark.parametrize("text, line", [

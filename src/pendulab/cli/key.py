@@ -45,6 +45,13 @@ def key(groups_file: str, output: str | None, as_json: bool) -> None:
                                     lines=", ".join(map(str, lines))) for students, lines in again)
         warning = sentence("key.listed_again." + ("one" if len(again) == 1 else "many"), count=len(again), groups=listed)
         click.echo(f"pendulab: warning: {warning}", err=True)
+    repeated = answer.repeated_students(groups)
+    if repeated:
+        from ..report.key import repeated_words
+
+        for r in repeated:
+            for words in repeated_words(r.to_dict()):
+                click.echo(f"pendulab: warning: {words}", err=True)
     k = answer.answer_key(groups)
     if output is not None:
         from ..report.key import write_key

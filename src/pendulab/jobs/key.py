@@ -9,6 +9,7 @@ from __future__ import annotations
 
 import math
 import os
+import re
 import sys
 from collections.abc import Sequence
 from dataclasses import dataclass
@@ -46,30 +47,78 @@ class Entry:
     line: int | None = None
 
 
-def parse_entries(text: str, source: str = "groups") -> list[Entry]:
-    """One group per line: student numbers separated by commas or spaces, then optionally
-    ``|`` and the students' names separated by ``;``, one per number, in their order.
+def _has_letters(text: str) -> bool:
+    return any(ch.isalpha() for ch in text)
 
-    Blank lines and ``#`` comments (whole lines or line ends) are skipped. A bad line
-    raises :class:`~pendulab.core.errors.InputError` naming ``source`` and its line number;
-    a file with no group at all is refused too.
+
+def _cells(line: str) -> list[str]:
+    """The cells of a spreadsheet row: split at ``;`` when the line has one (a Portuguese
+    locale's list separator), else at ``,``; quotes as the csv module reads them."""
+    import csv
+
+    delimiter = ";" if ";" in re.sub(r'"[^"]*"', "", line) else ","  # outside quoted cells
+    row = next(csv.reader([line], delimiter=delimiter, skipinitialspace=True), [])
+    return [c.strip() for c in row]
+
+
+_NUMERIC_CELL = re.compile(r"[0-9][0-9\s,;]*")
+
+
+def _parse_line(line: str) -> tuple[tuple[int, ...], tuple[str, ...] | None]:
+    """One group's numbers and names (see :func:`parse_entries`); InputError if the line is bad."""
+    numbers, sep, names_text = line.partition(NAMES_SEPARATOR)
+    if sep or not _has_letters(line):
+        # a spreadsheet's row ends in empty cells: "262;407;634;;"
+        students = inputs.students("groups", numbers.strip().rstrip(",; \t").replace(";", ","))
+        names = inputs.names("groups", names_text, len(students)) if sep else None
+        return students, names
+    cells = [c for c in _cells(line) if c]  # a spreadsheet pads its rows with empty cells
+    k = 0
+    while k < len(cells) and _NUMERIC_CELL.fullmatch(cells[k]):
+        k += 1
+    if k == 0:
+        raise InputError("groups", inputs.shown(line), "student numbers first, then the names")
+    students = inputs.students("groups", " ".join(c.replace(";", " ") for c in cells[:k]))
+    rest = cells[k:]
+    if len(rest) == 1 and ";" in rest[0]:  # one quoted cell "Ana Sá; João Simões"
+        rest = rest[0].split(";")
+    return students, inputs.names("groups", ";".join(rest), len(students))
+
+
+def parse_entries(text: str, source: str = "groups") -> list[Entry]:
+    """One group per line, as people and spreadsheets write it.
+
+    A line holds the group's student numbers separated by commas, semicolons or spaces,
+    then optionally its students' names, one per number and in their order: after ``|``
+    and separated by ``;`` (``262, 407, 634 | Ana Sá; João Simões``), or as further
+    cells of a spreadsheet row, separated by ``;`` or ``,`` (``262;407;634;Ana Sá;João
+    Simões;Maria Luís``, ``"262 407 634","Ana Sá; João Simões; Maria Luís"``). The first
+    line with words and no digit is a header row (``students;names``) and is skipped.
+
+    Blank lines, empty cells and ``#`` comments (whole lines or line ends) are skipped. A
+    bad line raises :class:`~pendulab.core.errors.InputError` naming ``source`` and its
+    line number; a file with no group at all is refused too. Repeated students are kept
+    as written (:func:`repeated_students` finds them).
     """
     from ..numerics.group import group_length
 
     entries: list[Entry] = []
+    header_seen = False
     text = text.removeprefix("\ufeff")  # the byte order mark that Notepad and Excel write
     for number, raw in enumerate(text.splitlines(), start=1):
         line = raw.split("#", 1)[0].strip()
-        if not line:
+        if not line or not line.strip(",; \t"):
+            continue
+        if (not entries and not header_seen and NAMES_SEPARATOR not in line and _has_letters(line)
+                and not any(ch.isdigit() for ch in line)):
+            header_seen = True  # a header row: "students", "números;nomes"
             continue
         if len(entries) == MAX_GROUPS:
             raise InputError("groups", source, f"a file of at most {MAX_GROUPS} groups (line {number} "
                                                f"starts group {MAX_GROUPS + 1}); split the class into several keys")
-        numbers, sep, names_text = line.partition(NAMES_SEPARATOR)
         try:
-            students = inputs.students("groups", numbers.strip())  # the CLI's grammar of student numbers
+            students, names = _parse_line(line)
             group_length(students)
-            names = inputs.names("groups", names_text, len(students)) if sep else None
         except InputError as exc:
             raise InputError("groups", f"{source} line {number}: {inputs.shown(raw.strip())}", exc.allowed) from None
         entries.append(Entry(students, names, number))
@@ -174,6 +223,46 @@ def listed_again(entries: Sequence[Entry]) -> list[tuple[tuple[int, ...], list[i
         lines.setdefault(first, [first]).append(line)
     by_line = {(e.line if e.line is not None else i): e for i, e in enumerate(entries, start=1)}
     return [(by_line[first].students, ls) for first, ls in lines.items()]
+
+
+@dataclass(frozen=True)
+class Repeated:
+    """A student number found more than once: twice or more in the group of ``line``
+    (``within``), and in the groups of ``other_lines`` (groups with other numbers: a group
+    listed again whole is :func:`duplicates`' case)."""
+
+    student: int
+    line: int
+    within: int
+    other_lines: tuple[int, ...]
+
+    def to_dict(self) -> dict[str, Any]:
+        return {"student": self.student, "line": self.line, "within": self.within,
+                "other_lines": list(self.other_lines)}
+
+
+def repeated_students(entries: Sequence[Entry]) -> list[Repeated]:
+    """Every student number listed twice in one group (``12121, 21212, 12121``) or in two
+    groups of different numbers, once per (student, line), in the order of the file."""
+    from collections import Counter
+
+    lines = [e.line if e.line is not None else i for i, e in enumerate(entries, start=1)]
+    dup = duplicates(entries)
+    where: dict[int, list[int]] = {}
+    for e, line in zip(entries, lines):
+        if line in dup:  # the same group again: flagged as listed again
+            continue
+        for n in dict.fromkeys(e.students):
+            where.setdefault(n, []).append(line)
+    out = []
+    for e, line in zip(entries, lines):
+        counts = Counter(e.students)
+        first = dup.get(line, line)
+        for n in dict.fromkeys(e.students):
+            others = tuple(x for x in where.get(n, ()) if x != first)
+            if counts[n] > 1 or others:
+                out.append(Repeated(n, line, counts[n], others))
+    return out
 
 
 def output_format(path: str | os.PathLike) -> str:
@@ -365,16 +454,22 @@ def answer_key(groups: Sequence[Sequence[int] | Entry]) -> AnswerKey:
 
     Each group's answers carry its ``line`` (in the groups file, else its place in
     ``groups``), its ``names`` and ``duplicate_of``: the line of its first listing when the
-    same student numbers were listed before (its answers are computed once).
+    same student numbers were listed before (its answers are computed once), and
+    ``repeated``: its students listed twice in it or also in other groups
+    (:func:`repeated_students`).
     """
     entries = [g if isinstance(g, Entry) else Entry(tuple(g)) for g in groups]
     entries = [e if e.line is not None else Entry(e.students, e.names, i) for i, e in enumerate(entries, start=1)]
     dup = duplicates(entries)
+    repeated: dict[int, list[dict[str, Any]]] = {}
+    for r in repeated_students(entries):
+        repeated.setdefault(r.line, []).append(r.to_dict())
     done: dict[tuple[int, ...], dict[str, Any]] = {}
     out = []
     for e in entries:
         if e.students not in done:
             done[e.students] = group_answers(e.students)
         out.append({"line": e.line, "names": None if e.names is None else list(e.names),
-                    "duplicate_of": dup.get(e.line)} | done[e.students])  # type: ignore[arg-type]
+                    "duplicate_of": dup.get(e.line),
+                    "repeated": repeated.get(e.line, [])} | done[e.students])  # type: ignore[arg-type]
     return AnswerKey(common_answers(), out)

@@ -40,6 +40,23 @@ def document(key: AnswerKey, lang: str = "en") -> dict[str, Any]:
     return d
 
 
+def repeated_words(r: dict[str, Any], lang: str = "en") -> list[str]:
+    """The flags of one repeated student (:meth:`pendulab.jobs.key.Repeated.to_dict`) in words."""
+    out = []
+    if r["within"] > 1:
+        out.append(sentence("key.repeated.within", lang, student=r["student"], times=r["within"], line=r["line"]))
+    if r["other_lines"]:
+        out.append(sentence("key.repeated.across", lang, student=r["student"], line=r["line"],
+                            lines=", ".join(map(str, r["other_lines"]))))
+    return out
+
+
+def repeated_cell(g: dict[str, Any], lang: str = "en") -> str | None:
+    """A group's repeated students as one cell (``None``: none)."""
+    words = [w for r in g.get("repeated", []) for w in repeated_words(r, lang)]
+    return "; ".join(words) or None
+
+
 def _cell(x: Any) -> Any:
     """A CSV cell: floats by their shortest round-trip repr, booleans as yes/no, None empty."""
     if x is None:
@@ -62,6 +79,7 @@ def csv_columns(key: AnswerKey) -> list[tuple[str, Any]]:
         ("students", lambda g: " ".join(map(str, g["students"]))),
         ("names", lambda g: "; ".join(g["names"]) if g["names"] else None),
         ("duplicate_of_line", lambda g: g["duplicate_of"]),
+        ("repeated_students", repeated_cell),
         ("sum", lambda g: g["sum"]),
         ("nonzero_digits", lambda g: g["digits"]),
         ("length", lambda g: g["length_text"]),
