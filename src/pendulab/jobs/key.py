@@ -469,7 +469,7 @@ def answer_key(groups: Sequence[Sequence[int] | Entry]) -> AnswerKey:
     for e in entries:
         if e.students not in done:
             done[e.students] = group_answers(e.students)
+        line = e.line or 0  # every entry has its line by now
         out.append({"line": e.line, "names": None if e.names is None else list(e.names),
-                    "duplicate_of": dup.get(e.line),
-                    "repeated": repeated.get(e.line, [])} | done[e.students])  # type: ignore[arg-type]
+                    "duplicate_of": dup.get(line), "repeated": repeated.get(line, [])} | done[e.students])
     return AnswerKey(common_answers(), out)
