@@ -1,0 +1,122 @@
+"""The digit policy (:mod:`pendulab.core.digits`): each form against an independent
+computation in exact rationals, over every boundary (Hypothesis), and its table in docs."""
+from __future__ import annotations
+
+import math
+import re
+from decimal import Decimal
+from fractions import Fraction
+from pathlib import Path
+
+import pytest
+from hypothesis import given
+from hypothesis import strategies as st
+
+from pendulab.core import digits
+
+ROOT = Path(__file__).resolve().parents[1]
+finite = st.floats(allow_nan=False, allow_infinity=False, min_value=-1e300, max_value=1e300)
+positive = st.floats(min_value=1e-300, max_value=1e300)
+
+
+def value(text: str) -> Fraction:
+    """The exact value of a printed number (``-1.25e-5`` too)."""
+    mant, exp = digits.split(text)
+    return Fraction(mant) * Fraction(10) ** (exp or 0)
+
+
+def last_place(text: str) -> int:
+    """The place 10^q of the last digit printed."""
+    mant, exp = digits.split(text)
+    decimals = len(mant.split(".")[1]) if "." in mant else 0
+    return (exp or 0) - decimals
+
+
+@given(finite, st.integers(0, 20))
+def test_fixed_is_correctly_rounded(x, d):
+    text = digits.fixed(x, d)
+    assert text == f"{x:.{d}f}"  # Python's format rounds the exact binary value correctly
+    assert abs(value(text) - Fraction(x)) <= Fraction(1, 2) * Fraction(10) ** -d
+
+
+@given(finite, st.integers(1, 17))
+def test_significant_digits_and_rounding(x, n):
+    text = digits.significant(x, n)
+    if x == 0:
+        assert text == "0"
+        return
+    mant, _ = digits.split(text)
+    shown = mant.lstrip("-").replace(".", "").lstrip("0")
+    assert len(shown) == n or ("." not in mant and len(shown) > n)  # trailing zeros kept; 10 is "10"
+    assert value(text) == Fraction(Decimal(f"{x:.{n - 1}e}"))  # format rounds the exact value
+    assert ("e" not in text) == (Fraction(1, 1000) <= abs(value(text)) < 10**6)
+
+
+@given(finite, st.integers(1, 17))
+def test_bound_is_the_least_above(x, n):
+    text = digits.bound(x, n)
+    b, a = value(text), abs(Fraction(x))
+    if b == 0:
+        assert x == 0
+        return
+    # the place of the n-th digit (20 for 11 to 1 digit: its zero is not a claim)
+    unit = Fraction(10) ** (Decimal(b.numerator / b.denominator).adjusted() - n + 1)
+    assert b >= a and b - a < unit  # rounded up, by less than one unit of its last place
+
+
+@given(positive)
+def test_place_is_the_least_allowed(error):
+    q = digits.place(error)
+    e = Fraction(error)
+    assert e <= Fraction(1, 2) * Fraction(10) ** q
+    assert e > Fraction(1, 2) * Fraction(10) ** (q - 1)
+
+
+@pytest.mark.parametrize(("error", "q"), [(0.5, 0), (5.0, 1), (50.0, 2), (0.500001, 1), (0.4999999, 0),
+                                          (5e-16, -14), (4.9e-16, -15), (2.5e-16, -15), (5.0000001e-15, -13)])
+def test_place_at_the_boundaries(error, q):
+    """0.5 10^q exactly (0.5, 5, 50 are doubles), a hair either side, and 5e-16 (a double just above)."""
+    assert digits.place(error) == q
+
+
+@given(finite, positive)
+def test_with_error_prints_only_right_digits(x, error):
+    """Every value within ``error`` of ``x`` (the truth may be any of them) is within one
+    unit of the printed number's last place, and one more digit would not be."""
+    text = digits.with_error(x, error)
+    if value(text) == 0:  # the error swamps x: a presenter marks it as rounding noise
+        q = digits.place(error)
+        assert abs(Fraction(x)) <= Fraction(1, 2) * Fraction(10) ** q
+        assert q > 0 or text == "0." + "0" * -q if q < 0 else text == "0"
+        return
+    q = last_place(text)
+    unit = Fraction(10) ** q
+    worst = abs(value(text) - Fraction(x)) + Fraction(error)
+    assert worst <= unit
+    if q > math.floor(math.log10(abs(x))) - 16 if x else True:  # not cut by the 17-digit cap
+        assert Fraction(error) > Fraction(1, 2) * Fraction(10) ** (q - 1)
+
+
+def test_the_issues_numbers():
+    """x_0 = 60 degrees from its radians, and the 3(d) coefficient of issue 32."""
+    x0 = math.degrees(math.radians(60))
+    assert x0 != 60 and digits.with_error(x0, 1.3e-14) == "60.0000000000000"
+    assert digits.bound(0.0273622, 4) == "0.02737"
+    assert digits.scientific(-8.99e-15, 3) == "-8.99e-15"
+    assert digits.significant(0.88, 3) == "0.880" and digits.significant(11.2674, 6) == "11.2674"
+
+
+def test_shown_follows_the_policy():
+    assert digits.shown("p4.normal", 401.0) == "401.000000"
+    assert digits.shown("p1.error_bound", 0.0273622) == "0.02737"
+    with pytest.raises(ValueError, match="give error"):
+        digits.shown("p5.estimate", 1.0)
+    with pytest.raises(ValueError, match="kind"):
+        digits.Form("rounded", 3)
+
+
+def test_the_docs_table_is_the_policy():
+    """docs/report.md lists every quantity of :data:`POLICY` with its form, and no other."""
+    text = (ROOT / "docs" / "report.md").read_text(encoding="utf-8")
+    rows = re.findall(r"^\| `([a-z0-9_.]+)` \| (\w+) \| (\d+) \|", text, flags=re.M)
+    assert {name: digits.Form(kind, int(n)) for name, kind, n in rows} == digits.POLICY
