@@ -100,7 +100,7 @@ def correctly_rounded_period(length: float) -> float:
 @SLOW
 @given(GROUPS)
 def test_section0_never_shows_equal_digits_n_ulp_apart(students):
-    doc = sections(students, ["exact period"])
+    doc = sections(students, ["AGM period"])
     length = float(plain.length_text(students))
     t7, tc = plain.agm7_period(length), correctly_rounded_period(length)
     sentence = doc.entry("agm.text")
@@ -116,7 +116,7 @@ def test_section0_never_shows_equal_digits_n_ulp_apart(students):
 
 @pytest.mark.parametrize("students, choice", [((12345, 67890), "agm.same.equal"), (EXAMPLE, "agm.same.one")])
 def test_section0_the_groups_seen_on_a_page(students, choice):
-    doc = sections(students, ["exact period"])
+    doc = sections(students, ["AGM period"])
     assert doc.choices["agm.same"] == choice
     assert doc.values["agm.t7"] != doc.values["agm.tc"] or choice == "agm.same.equal"
 

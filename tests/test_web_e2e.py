@@ -75,14 +75,14 @@ def guarded_page(context, server):
 
 
 def shown_period(pg) -> float:
-    return float(pg.locator("#period-exact").text_content())
+    return float(pg.locator("#period-agm").text_content())
 
 
 def wait_for_period(pg, expected: float, timeout: float = 20.0) -> float:
     """Poll the period on the page until it shows ``expected`` (12 significant digits)."""
     deadline = time.monotonic() + timeout
     while True:
-        text = pg.locator("#period-exact").text_content()
+        text = pg.locator("#period-agm").text_content()
         try:
             if math.isclose(float(text), expected, rel_tol=1e-11):
                 return float(text)
@@ -701,7 +701,7 @@ def test_second_pendulum_swings_beside_with_its_exact_period_to_scale(page, serv
               "&second=1&length2=20&amplitude2=120&g2=9.80665&scale=1")
     wait_for_period(page, ellipk_period(3.5, math.radians(10)))
     page.wait_for_selector("#period2-line:not([hidden])")
-    assert float(page.locator("#period2-exact").text_content()) == pytest.approx(
+    assert float(page.locator("#period2-agm").text_content()) == pytest.approx(
         ellipk_period(20, math.radians(120)), rel=1e-11)
     # Both rods at one scale: the ruler (a fixed length, the full radius) is 20 m here.
     w = page.locator("#canvas").bounding_box()["width"]
@@ -749,7 +749,7 @@ def test_photogate_times_the_swing(browser, server):
         # Over the top (theta'(0) = 7 rad/s): every pass is one more turn, the same way.
         pg.goto(server + "/?length=1&amplitude=17&unit=deg&step=1e-3&t_max=60&omega0=7")
         pg.wait_for_function("document.getElementById('gate').dataset.period", timeout=20_000)
-        turn = float(pg.locator("#period-exact").text_content())
+        turn = float(pg.locator("#period-agm").text_content())
         assert float(pg.get_attribute("#gate", "data-period")) == pytest.approx(turn, rel=2e-3)
     finally:
         context.close()
@@ -826,7 +826,7 @@ def test_a_launch_goes_over_the_top_and_the_exact_motion_follows(page, server):
     m = 1 / k**2
     with mpmath.workdps(30):  # a turn takes 2 K(1/k^2)/(k w) (DLMF 22.19), mpmath's K
         turn = float(2 * mpmath.ellipk(m) / (k * w))
-    assert float(page.locator("#period-exact").text_content()) == pytest.approx(turn, rel=1e-11)
+    assert float(page.locator("#period-agm").text_content()) == pytest.approx(turn, rel=1e-11)
     assert not page.locator("#flags").text_content()  # going over the top is right here
     # The exact curve on theta(t) grows by 2 pi a turn, with the simulation on it (scipy DOP853 as reference).
     from scipy.integrate import solve_ivp
@@ -844,7 +844,7 @@ def test_a_launch_goes_over_the_top_and_the_exact_motion_follows(page, server):
     page.fill("#omega0", "2")
     page.wait_for_selector("#period-label:has-text('turning angle')")
     k = math.hypot(math.sin(math.radians(17) / 2), 2 / (2 * w))
-    assert float(page.locator("#period-exact").text_content()) == pytest.approx(ellipk_period(1, 2 * math.asin(k)), rel=1e-11)
+    assert float(page.locator("#period-agm").text_content()) == pytest.approx(ellipk_period(1, 2 * math.asin(k)), rel=1e-11)
     page.wait_for_function("document.getElementById('plot-ratio').data.some(t => t.name === 'this pendulum' && "
                            f"Math.abs(t.x[0] - {math.degrees(2 * math.asin(k))}) < 1e-9)")
     # A bad value is named under its field.

@@ -58,7 +58,7 @@ SCHEDULER = Parsed(_scheduler, "address")
               help="Write the relative error of every formula over [0, 180) degrees to this PNG/SVG/PDF.")
 @json_option
 def approximations(plot, as_json):
-    """Classical period formulas against the exact (AGM) period: relative errors.
+    """Classical period formulas against the AGM period: relative errors.
 
     Small angle, the coursework's (9), Kidd-Fogg, Lima-Arun, Ganley, and the AGM
     truncated after 1, 2, 3 iterations (Carvalhaes-Suppes).

@@ -56,7 +56,7 @@ def _method_option(f):
 @g_option
 @json_option
 def period(length, amplitude, iterations, digits, g, as_json):
-    """The exact period by the arithmetic-geometric mean, equations (7)-(8).
+    """The period by the arithmetic-geometric mean, equations (7)-(8).
 
     The digits printed are those of the true period of the inputs as written, correctly
     rounded and proved by ball arithmetic (Arb). --json gives as well "period", the double
@@ -152,7 +152,7 @@ def _plots():
 @click.option("--step", "steps", type=DURATION_LIST, default=",".join(f"{s:g}" for s in PROBLEM3_STEPS),
               show_default=True, help="Comma-separated steps h.")
 @click.option("--t-max", "t_max", type=INSTANT, default=None,
-              help="End of the simulation; default 1.5 T + 4h from the exact period (8).")
+              help="End of the simulation; default 1.5 T + 4h from the AGM period (8).")
 @_method_option
 @click.option("--dense", is_flag=True,
               help="Add the period from dense output (the zero of theta' on the flow's Taylor series): "

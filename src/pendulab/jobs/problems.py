@@ -31,12 +31,14 @@ if TYPE_CHECKING:  # names for annotations; the modules load when a problem runs
 #: 3(d): the interpolation error counts as negligible when it is below this fraction of
 #: the Taylor method's own error in the period.
 NEGLIGIBLE_RATIO = 1e-3
-#: 3(b): how far (in exact periods) the h = 0.2 simulation is searched for its first
+#: 3(b): how far (in periods T^) the h = 0.2 simulation is searched for its first
 #: return to P or its passage over the top.
 PLOT_SEARCH_PERIODS = 4.0
 
-#: 3(b): what the h = 0.2 simulation does first.
-RETURNS, LEAVES, NO_RETURN = "returns", "leaves", "none"
+#: 3(b): what the h = 0.2 simulation does first (``Problem3.plot_outcome``): it returns to
+#: P, it leaves the oscillation, or neither within the search (not ``Status.NO_RETURN``,
+#: the period search's status).
+RETURNS, LEAVES, NEITHER = "returns", "leaves", "none"
 
 
 @dataclass(frozen=True, eq=False)
@@ -53,7 +55,7 @@ class Problem3(Result):
         ``4 pi/5``.
     t_hat : float
         ``T^`` of (8) (7 iterations, as the coursework prescribes) for the group's pendulum;
-        the value the coursework calls exact.
+        the reference of problems 3 to 5, as the coursework prescribes.
     plot : Trajectory
         3(b): ``h = 0.2`` on ``[0, plot_t_max]`` (see :func:`plot_t_max`).
     plot_t_max : float
@@ -61,7 +63,7 @@ class Problem3(Result):
         What the ``h = 0.2`` simulation does first: ``"returns"`` to ``P`` (bracket in
         ``plot_estimate``), ``"leaves"`` the oscillation (goes over the top, ``|z1| > pi``,
         at ``plot_left_at``: the step is too large for this pendulum), or ``"none"``
-        (neither within ``PLOT_SEARCH_PERIODS`` exact periods).
+        (neither within ``PLOT_SEARCH_PERIODS`` periods ``T^``).
     plot_left_at : float or None
         The first ``t_j`` with ``|z1_j| > pi`` when ``plot_outcome == "leaves"``.
     plot_estimate : PeriodEstimate or None
@@ -119,15 +121,15 @@ def plot_t_max(event: float, step: float) -> float:
     return step * math.ceil(round(1.25 * event / step, 9))
 
 
-def plot_outcome(length: float, amplitude: float, step: float, exact: float):
+def plot_outcome(length: float, amplitude: float, step: float, t_hat: float):
     """3(b): ``(outcome, left_at, estimate, t_max)`` of the simulation with step ``step``.
 
-    The simulation is searched over ``PLOT_SEARCH_PERIODS`` exact periods: it returns to
+    The simulation is searched over ``PLOT_SEARCH_PERIODS`` periods ``t_hat``: it returns to
     ``P`` (sign change of ``z2`` with ``z1 > 0``), or its discrete energy grows until it
-    goes over the top (``|z1| > pi``), which the exact pendulum, released below the top
+    goes over the top (``|z1| > pi``), which the pendulum's exact motion, released below the top
     at rest, never does.
     """
-    search = PLOT_SEARCH_PERIODS * exact
+    search = PLOT_SEARCH_PERIODS * t_hat
     found = search_period(length, amplitude, step, search)
     if found.status == Status.LEFT_OSCILLATION:  # the search carries the time it went over the top
         assert found.t_left is not None
@@ -135,8 +137,8 @@ def plot_outcome(length: float, amplitude: float, step: float, exact: float):
     if found.estimate is None:
         if found.status != Status.NO_RETURN:
             raise search_error(found)
-        return NO_RETURN, None, None, plot_t_max(search / 1.25, step)
-    return RETURNS, None, found.estimate, plot_t_max(max(exact, found.estimate.bracket[1]), step)
+        return NEITHER, None, None, plot_t_max(search / 1.25, step)
+    return RETURNS, None, found.estimate, plot_t_max(max(t_hat, found.estimate.bracket[1]), step)
 
 
 def problem3(
@@ -150,16 +152,16 @@ def problem3(
     group = group_length(students)
     length = group.length
     alpha = float(cases.PROBLEM3_AMPLITUDE)
-    exact = agm_period(length, alpha, iterations=7)
+    t_hat = agm_period(length, alpha, iterations=7)
     h = cases.PROBLEM3_PLOT_STEP
-    outcome, left_at, plot_estimate, t_max = plot_outcome(length, alpha, h, exact)
+    outcome, left_at, plot_estimate, t_max = plot_outcome(length, alpha, h, t_hat)
     plot = simulate(length, alpha, h, t_max)
     steps = list(steps)
     if cubic_step not in steps:
         steps.append(cubic_step)
     estimates = [estimate_period(length, alpha, s) for s in steps]
     cubic = estimates[steps.index(cubic_step)]
-    taylor_err = abs(cubic.cubic - exact)
+    taylor_err = abs(cubic.cubic - t_hat)
     ip = cubic.interpolation
     bound = max(abs(ip.error_estimate), ip.rounding_level)
     ratio = bound / taylor_err if taylor_err > 0 else math.inf
@@ -167,15 +169,15 @@ def problem3(
         figure3=figure3,
         group=group,
         amplitude=alpha,
-        t_hat=exact,
+        t_hat=t_hat,
         plot=plot,
         plot_t_max=t_max,
         plot_outcome=outcome,
         plot_left_at=left_at,
         plot_estimate=plot_estimate,
         estimates=estimates,
-        linear_orders=observed_orders(steps, [abs(e.linear - exact) for e in estimates]),
-        cubic_orders=observed_orders(steps, [abs(e.cubic - exact) for e in estimates]),
+        linear_orders=observed_orders(steps, [abs(e.linear - t_hat) for e in estimates]),
+        cubic_orders=observed_orders(steps, [abs(e.cubic - t_hat) for e in estimates]),
         cubic=cubic,
         interpolation_resolved=ip.error_estimate_resolved,
         interpolation_bound=bound,
@@ -616,18 +618,18 @@ def problem5(
     """
     from ..numerics.quadrature import GAUSS3, convergence_table, quadrature_period
 
-    exact = agm_period(length, amplitude, g, iterations=7)
+    t_hat = agm_period(length, amplitude, g, iterations=7)
     rounded = agm_period(length, amplitude, g)
-    rows = convergence_table(length, amplitude, ns, exact, g, substitution=substitution, graded=graded,
-                             substitution_exact=_substitution_reference(exact, rounded))
-    floor = ROUNDING_FLOOR * abs(exact)
+    rows = convergence_table(length, amplitude, ns, t_hat, g, substitution=substitution, graded=graded,
+                             substitution_reference=_substitution_reference(t_hat, rounded))
+    floor = ROUNDING_FLOOR * abs(t_hat)
     converged = next((row.n for row in rows if row.substitution_error is not None
                       and row.substitution_error <= floor), None)
     return Problem5(
         length=float(length),
         amplitude=float(amplitude),
         g=float(g),
-        t_hat=exact,
+        t_hat=t_hat,
         period=rounded,
         rule=GAUSS3,
         single=quadrature_period(length, amplitude, 1, g),

@@ -1,8 +1,8 @@
-"""Classical closed-form approximations of the pendulum's period, against the exact one.
+"""Classical closed-form approximations of the pendulum's period, against the AGM period.
 
 Each formula gives the ratio ``T/T0`` to the small-angle period ``T0 = 2 pi sqrt(l/g)``
 as a function of the amplitude ``alpha`` alone, so its relative error
-``T_approx/T - 1 = (T_approx/T0) M(1, cos(alpha/2)) - 1`` (the exact ``T/T0`` is
+``T_approx/T - 1 = (T_approx/T0) M(1, cos(alpha/2)) - 1`` (the true ``T/T0`` is
 ``1/M(1, cos(alpha/2))``, equations (7)-(8)) does not depend on ``l`` or ``g``.
 
 References
@@ -17,7 +17,7 @@ References
 .. [G]  W. P. Ganley, "Simple pendulum approximation", Am. J. Phys. 53, 73-76 (1985):
    ``T0 sqrt(F alpha / sin(F alpha))`` with ``F`` "approximately ``sqrt(3)/2``"; this
    module takes ``F = sqrt(3)/2`` exactly, the value that reproduces the ``alpha^2/16``
-   term of the exact series (R. R. Parwani, arXiv:physics/0303036). With it the error
+   term of the series (R. R. Parwani, arXiv:physics/0303036). With it the error
    stays within 1e-3 up to 94 degrees (Ganley's abstract: 100 degrees with his fitted F).
 .. [CS] C. G. Carvalhaes, P. Suppes, "Approximations for the period of the simple
    pendulum based on the arithmetic-geometric mean", Am. J. Phys. 76, 1150-1154 (2008):
@@ -160,7 +160,7 @@ class ApproximationErrors(Result):
 
 
 def approximation_errors(amplitudes: Any = None, names: Any = None) -> ApproximationErrors:
-    """Relative error of each approximation against the exact period over ``[0, pi)``.
+    """Relative error of each approximation against the AGM period over ``[0, pi)``.
 
     Parameters
     ----------

@@ -1,6 +1,6 @@
 """The period of the simple pendulum: small-angle, AGM (7)-(8), and to any number of digits.
 
-The exact period of a pendulum of length ``l`` released at rest from amplitude
+The period of a pendulum of length ``l`` released at rest from amplitude
 ``alpha`` is ``T = 2 pi sqrt(l/g) / M(1, cos(alpha/2))`` with ``M`` the
 arithmetic-geometric mean, equations (7)-(8) of the coursework.
 
@@ -200,7 +200,7 @@ def agm_period(length: ArrayLike, amplitude: ArrayLike, g: float | Exact = G,
                iterations: int | None = None) -> NDArray[np.float64]: ...
 def agm_period(length: float | Exact | ArrayLike, amplitude: float | Exact | ArrayLike, g: float | Exact = G,
                iterations: int | None = None) -> float | NDArray[np.float64]:
-    """Exact period by the arithmetic-geometric mean, equations (7)-(8).
+    """The period by the arithmetic-geometric mean, equations (7)-(8).
 
     Parameters
     ----------
@@ -215,7 +215,7 @@ def agm_period(length: float | Exact | ArrayLike, amplitude: float | Exact | Arr
         ``None`` (default): the AGM to convergence, and the result is the double nearest
         to the true period of the given doubles (correctly rounded), for every amplitude
         in ``[0, pi)``. ``7``: the coursework's ``T^`` bit for bit (the loop (7) in
-        double precision), exact only while ``alpha`` is not too close to ``pi`` (see
+        double precision), equal to the period only while ``alpha`` is not too close to ``pi`` (see
         :func:`fixed_iterations_limit`).
 
     Returns

@@ -334,13 +334,14 @@ def observed_rates(ns, errors, floor: float) -> list[float | None]:
     return out
 
 
-def convergence_table(length, amplitude, ns, exact: float, g=G, substitution: bool = False,
-                      graded: bool = False, substitution_exact: float | None = None) -> list[QuadratureRow]:
-    """The table of 5(d): ``n``, period, ``|error|`` against ``exact`` and observed rate.
+def convergence_table(length, amplitude, ns, reference: float, g=G, substitution: bool = False,
+                      graded: bool = False, substitution_reference: float | None = None) -> list[QuadratureRow]:
+    """The table of 5(d): ``n``, period, ``|error|`` against ``reference`` and observed rate.
 
+    ``reference``: the period the errors are measured against (problem 5 passes ``t_hat``).
     ``graded`` (with ``substitution``): the substituted columns on graded panels
-    (see :func:`quadrature_period`). ``substitution_exact``: the substituted columns'
-    reference, when not ``exact`` (near pi, where ``T^`` of (8) is not the true period).
+    (see :func:`quadrature_period`). ``substitution_reference``: the substituted columns'
+    reference, when not ``reference`` (near pi, where ``T^`` of (8) is not the period).
     """
     if graded and not substitution:
         raise InputError("graded", graded, "False without the substitution (the graded panels are for its peak)")
@@ -350,18 +351,18 @@ def convergence_table(length, amplitude, ns, exact: float, g=G, substitution: bo
     if sum(ns) > MAX_TOTAL_N:
         raise InputError("n", ns, f"numbers of subintervals summing to at most {MAX_TOTAL_N:.0e} (these sum to "
                                   f"{sum(ns):.3g})")
-    floor = 64 * np.finfo(float).eps * abs(exact)  # below this an error is rounding, not truncation
+    floor = 64 * np.finfo(float).eps * abs(reference)  # below this an error is rounding, not truncation
     periods = [quadrature_period(length, amplitude, n, g) for n in ns]
-    errors = [abs(p - exact) for p in periods]
+    errors = [abs(p - reference) for p in periods]
     rates = observed_rates(ns, errors, floor)
     sp: list[float | None]
     se: list[float | None]
     sr: list[float | None]
     if substitution:
         sub_periods = [quadrature_period(length, amplitude, n, g, substitution=True, graded=graded) for n in ns]
-        sub_exact = exact if substitution_exact is None else substitution_exact
-        sub_errors = [abs(p - sub_exact) for p in sub_periods]
-        sub_floor = 64 * np.finfo(float).eps * abs(sub_exact)
+        sub_reference = reference if substitution_reference is None else substitution_reference
+        sub_errors = [abs(p - sub_reference) for p in sub_periods]
+        sub_floor = 64 * np.finfo(float).eps * abs(sub_reference)
         sp, se, sr = list(sub_periods), list(sub_errors), observed_rates(ns, sub_errors, sub_floor)
     else:
         sp = se = sr = [None] * len(ns)

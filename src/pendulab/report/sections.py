@@ -26,7 +26,7 @@ def programs() -> dict[str, Any]:
     return load()
 
 
-# ----------------------------------------------------------------------------- exact period
+# ----------------------------------------------------------------------------- the AGM period
 def _toward(x: float, digits: int, rounding: str) -> float:
     """``x`` to ``digits`` significant digits, rounded in the direction ``rounding``."""
     d = Decimal(x)
@@ -357,7 +357,7 @@ def problem5(doc: Doc, students: Sequence[int]) -> None:
 
 
 SECTIONS = [
-    ("exact period", agm),
+    ("AGM period", agm),
     ("problem 1", problem1),
     ("problem 2", problem2),
     ("problem 3", problem3),

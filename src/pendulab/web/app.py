@@ -6,11 +6,11 @@ Routes
 ``GET /static/{file}``        the page's own script and style
 ``GET /vendor/plotly.min.js`` plotly.js's "basic" bundle (MIT licence, in ``static/``)
 ``GET /api/config``           the methods of :mod:`pendulab.core.methods` now, g presets, limits
-``GET /api/period``           exact (AGM) and small-angle periods
+``GET /api/period``           the AGM and small-angle periods
 ``GET /api/simulate``         what the page draws (min/max per column), exact motion, estimates, flags
 ``GET /api/convergence``      period estimates and their errors over a list of steps
 ``GET /api/motion``           the exact motion alone (the page's second pendulum)
-``GET /api/period_curve``     T(alpha)/T0 from 0 to 179 deg, exact and by the classical approximations
+``GET /api/period_curve``     T(alpha)/T0 from 0 to 179 deg, by the AGM and by the classical approximations
 ``GET /api/trajectory.csv``   the trajectory as CSV, streamed block by block
 ``GET /api/docs``             the API's documentation (Swagger UI from ``swagger-ui-bundle``: offline)
 
@@ -23,7 +23,7 @@ A bad or missing parameter gives status 422 and ``{"error": {"field", "value",
 
 The answers' shapes are :mod:`pendulab.web.models`, published in ``/api/openapi.json``.
 
-Concurrency: every route is ``async``. The light ones (page, config, exact period) answer
+Concurrency: every route is ``async``. The light ones (page, config, the AGM period) answer
 on the event loop at once; each simulation runs in a pool of its own of
 :data:`pendulab.web.limits.SIMULATION_SLOTS` threads at lower priority (nice +10), the one
 limit on the cores. A request waiting for a slot is a queued work item awaited on the event

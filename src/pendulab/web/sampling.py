@@ -20,7 +20,7 @@ from ..core.interrupt import CHUNK_COST
 from ..core.methods import cost_per_step
 from ..numerics.simulation import kept_steps, stride_for
 
-#: Phase-portrait points per exact period, and at most this many in all.
+#: Phase-portrait points per period, and at most this many in all.
 PHASE_PER_PERIOD, PHASE_POINTS = 256, 4000
 #: Animation samples: at most this many (16 per period where they fit).
 FRAME_POINTS = 8000
@@ -37,7 +37,7 @@ def finite_list(a: np.ndarray) -> list:
 def phase_samples(n: int, steps_per_period: float) -> tuple[np.ndarray, int, int]:
     """Steps drawn in the phase portrait: a curve, never chords across the orbit.
 
-    About :data:`PHASE_PER_PERIOD` points per exact period (stride ``k``). When the whole
+    About :data:`PHASE_PER_PERIOD` points per period (stride ``k``). When the whole
     run at that stride exceeds :data:`PHASE_POINTS`, whole orbits (1.05 periods each) are
     taken at evenly spread times, first and last included, so that a drift of the orbit
     still shows. Returns ``(steps, stride, windows)``.

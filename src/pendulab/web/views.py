@@ -73,9 +73,9 @@ def estimate_view(length: float, amplitude: float, step: float, g: float, method
     from ..numerics.crossing import default_t_max, search_period
     from ..numerics.period import agm_period
 
-    exact = float(agm_period(length, amplitude, g))
-    span = default_t_max(exact, step)
-    if reason := limits.search_too_long(span, step, exact, resolve(method)):
+    period = float(agm_period(length, amplitude, g))
+    span = default_t_max(period, step)
+    if reason := limits.search_too_long(span, step, period, resolve(method)):
         return {"estimate": None, "status": NOT_RUN, "reason": reason}  # the period is too long for this step: say so, keep the rest
     if amplitude == 0:
         return {"estimate": None, "status": NOT_RUN,
@@ -169,7 +169,7 @@ def _flags(p: Mapping[str, Any], sim: Mapping[str, Any], err_t: np.ndarray | Non
     h = p["step"]
     swing = _energy0(p)  # the swing's energy, E0 - E(0), in m g l
     goes_round = bool(p.get("omega0", 0.0)) and sim.get("circulates", False)
-    left = sim["left"] * h if sim["left"] >= 0 and not goes_round else None  # over the top, as the exact one does
+    left = sim["left"] * h if sim["left"] >= 0 and not goes_round else None  # over the top, as the exact motion does
     bad = sim["bad"] * h if sim["bad"] >= 0 else None
     drift = sim["energy_max"]
     rel = drift / swing if swing > 0 and math.isfinite(drift) else None
@@ -215,7 +215,7 @@ def _flags(p: Mapping[str, Any], sim: Mapping[str, Any], err_t: np.ndarray | Non
 
 
 def simulate_view(params: Mapping[str, str]) -> dict[str, Any]:
-    """``GET /api/simulate``: what the page draws, the exact motion and period, estimates, flags.
+    """``GET /api/simulate``: what the page draws, the exact motion, the period, estimates, flags.
 
     ``t, theta``: the min and max of ``theta`` in each of ``points // 2`` columns of steps, in
     time order (every step when they fit), so a plot of them reaches every extreme of the
@@ -234,7 +234,7 @@ def simulate_view(params: Mapping[str, str]) -> dict[str, Any]:
     else:  # the coursework's estimate times a release at rest; a launch has its period from pendulab.numerics.launched
         est = {"estimate": None, "status": NOT_RUN, "reason": (
             f"the period is estimated from a release at rest; this pendulum is launched with theta'(0) = {p['omega0']:g} "
-            f"rad/s: its exact {'time for one turn' if launched['circulates'] else 'period'} is shown")}
+            f"rad/s: its {'time for one turn' if launched['circulates'] else 'period'} is shown")}
     sim = sampling.simulate_arrays(p, points)
     sim["circulates"] = bool(launched and launched["circulates"])
     h, n, nb = p["step"], sim["n"], sim["columns"]
@@ -378,23 +378,23 @@ def convergence_view(params: Mapping[str, str]) -> dict[str, Any]:
     p = parameters.pendulum(params)
     method = parameters.method(params)
     steps = sorted(set(parameters.step_list(params)), reverse=True)
-    exact = period_view(p["length"], p["amplitude"], p["g"])
+    periods = period_view(p["length"], p["amplitude"], p["g"])
     largest = parameters.DEFAULT_STEPS[0]
-    need = default_t_max(exact["period"], largest, 0.0) / largest
+    need = default_t_max(periods["period"], largest, 0.0) / largest
     if need > limits.max_steps(method):
         # Even the default list's largest step cannot reach the first return: the period is too long.
         name = parameters.unusual(p["length"], p["g"])
         raise v.too_much_work(
             name, inputs.shown(parameters.text(params, name, parameters.DEFAULTS["g"])),
-            f"such that the period search (1.5 T + 4h, T = {exact['period']:.3g} s) fits",
+            f"such that the period search (1.5 T + 4h, T = {periods['period']:.3g} s) fits",
             limits.max_steps(method), need, f"steps of {method.name} of h = {largest:g} s",
         )
-    limits.check_sweep([default_t_max(exact["period"], h, 0.0) for h in steps], steps, method)
+    limits.check_sweep([default_t_max(periods["period"], h, 0.0) for h in steps], steps, method)
     rows = []
     for h in steps:
         est = estimate_view(p["length"], p["amplitude"], h, p["g"], method.name)
         rows.append({"step": h} | est)
-    return {"method": method.name, "order": method.order, "period": exact, "rows": rows}
+    return {"method": method.name, "order": method.order, "period": periods, "rows": rows}
 
 
 def motion_view(params: Mapping[str, str]) -> dict[str, Any]:

@@ -1,4 +1,4 @@
-"""One chunk of a sweep: the exact periods, the kernel, and the estimates of problem 3(d).
+"""One chunk of a sweep: the AGM periods, the kernel, and the estimates of problem 3(d).
 
 The window of five points around the sign change gives the linear and the inverse cubic
 estimates, vectorised over the pendulums by the functions :func:`pendulab.numerics.crossing.estimate_period`
@@ -21,8 +21,8 @@ def run_chunk(code: int, order: int, alphas: np.ndarray, lengths: np.ndarray, g:
     from ...numerics.crossing import default_t_max
     from ...numerics.simulation import step_count
 
-    exact = np.asarray(agm_period(lengths, alphas, g), dtype=float)
-    n_steps = np.array([step_count(0.0, default_t_max(float(T), h), h) for T in exact], dtype=np.int64)
+    periods = np.asarray(agm_period(lengths, alphas, g), dtype=float)
+    n_steps = np.array([step_count(0.0, default_t_max(float(T), h), h) for T in periods], dtype=np.int64)
     cs = -g / lengths
     # One thread on a Dask worker (the worker's own threads run the chunks); the same kernel
     # as on all cores, so the same results bit for bit.
@@ -43,7 +43,7 @@ def run_chunk(code: int, order: int, alphas: np.ndarray, lengths: np.ndarray, g:
     # Steps taken: j + 2 when found (one past the sign change), else the index reported.
     steps = np.where(found, j + 2, np.where(status == Status.LEFT_OSCILLATION, j + 1, j))
     return {
-        "period": exact,
+        "period": periods,
         "status": status,
         "steps": steps,
         "linear": linear,

@@ -330,13 +330,13 @@ function tableFor(s, suffix) {
 function renderPeriods() {
   const p = sims.a.period;
   const L = sims.a.launch;
-  $("period-label").textContent = !L ? "Exact (AGM, eq. 8)"
-    : L.circulates ? "Exact, one turn over the top (DLMF 22.19)" : `Exact, launched (turning angle ${L.turning_angle_deg.toPrecision(6)}°)`;
-  $("period-exact").textContent = fix(p.period);
+  $("period-label").textContent = !L ? "Period (AGM, eq. 8)"
+    : L.circulates ? "Period, one turn over the top (DLMF 22.19)" : `Period, launched (turning angle ${L.turning_angle_deg.toPrecision(6)}°)`;
+  $("period-agm").textContent = fix(p.period);
   $("period-small").textContent = fix(p.small_angle_period);
   $("period2-line").hidden = !sims.second;
   if (sims.second) {
-    $("period2-exact").textContent = fix(sims.second.period);
+    $("period2-agm").textContent = fix(sims.second.period);
     $("period2-alpha").textContent = short(sims.second.amplitude_deg);
   }
   const box = $("tables");
@@ -519,7 +519,7 @@ function renderEnergy() {
 }
 
 function renderEstimates() {
-  // Each method's three estimates minus the exact period: three places on the axis, the
+  // Each method's three estimates minus the AGM period: three places on the axis, the
   // second method's markers (open, orange) just right of the first's.
   const T = sims.a.period.period;
   const traces = [];
@@ -541,7 +541,7 @@ function renderEstimates() {
     );
   }
   if (!traces.length) {
-    plot("plot-estimates", [], layout("Period estimates − exact T", "", "estimate − T (s)", {
+    plot("plot-estimates", [], layout("Period estimates − AGM period T", "", "estimate − T (s)", {
       annotations: [{ text: "no period from this simulation", showarrow: false, xref: "paper", yref: "paper", x: 0.5, y: 0.5 }],
       xaxis: { visible: false }, yaxis: { visible: false },
     }));
@@ -552,7 +552,7 @@ function renderEstimates() {
     xaxis: { tickvals: [0, 1, 2], ticktext: ["bracket", "linear", "cubic p(0)"], range: [-0.5, 2.5], tickfont: { size: 13 },
       automargin: true, zeroline: false, showgrid: false, title: { text: "estimate" + who, font: { size: 13 } } },
     shapes: [{ type: "line", xref: "paper", x0: 0, x1: 1, y0: 0, y1: 0, line: { color: COLORS.exact, width: 1.5, dash: "dash" } }],
-    annotations: [{ xref: "paper", x: 1, y: 0, text: "exact (AGM)", showarrow: false, xanchor: "right", yanchor: "bottom", font: { size: 12 } }],
+    annotations: [{ xref: "paper", x: 1, y: 0, text: "AGM period", showarrow: false, xanchor: "right", yanchor: "bottom", font: { size: 12 } }],
   }));
 }
 
@@ -620,14 +620,14 @@ function logTicks(values, length, room) {
 }
 
 async function renderRatio() {
-  // T(α)/T0 from 0 to 179°: the exact ratio, the classical approximations, this pendulum on it.
+  // T(α)/T0 from 0 to 179°: the AGM ratio, the classical approximations, this pendulum on it.
   if (!curve) {
     const r = await getJSON("/api/period_curve");
     if (!r.ok) return;
     curve = r.body;
   }
   const x = curve.amplitude_deg;
-  const traces = [{ x, y: curve.period_ratio, mode: "lines", name: "exact (AGM)", line: { color: COLORS.exact, width: 2.5 },
+  const traces = [{ x, y: curve.period_ratio, mode: "lines", name: "AGM", line: { color: COLORS.exact, width: 2.5 },
     hovertemplate: "α = %{x}°<br>T/T0 = %{y:.6f}<extra></extra>" }];
   const dashes = ["dash", "dot", "dashdot", "longdash", "longdashdot"];
   const colors = ["#8a94a6", "#e69f00", "#009e73", "#cc79a7", "#56b4e9"];
@@ -746,7 +746,7 @@ function showGate() {
   const T = sims.a ? sims.a.period.period : null;
   $("gate").textContent = gate.period === null
     ? `Photogate: ${gate.passes.length} pass${gate.passes.length === 1 ? "" : "es"}, waiting for a period`
-    : `Photogate: period ${gate.period.toFixed(3)} s · exact ${T.toFixed(3)} s`;
+    : `Photogate: period ${gate.period.toFixed(3)} s · AGM ${T.toFixed(3)} s`;
   $("gate").dataset.period = gate.period === null ? "" : String(gate.period);
 }
 
