@@ -130,7 +130,7 @@ def test_sweep_finds_tiny_amplitudes_with_finite_errors():
 
     r = sweep(np.array([1e-200, 1e-160, 1e-3]), [1e-3])
     assert list(r["status"]) == ["found"] * 3
-    assert np.all(np.isfinite(r["cubic_error"])) and np.all(np.abs(r["cubic_error"]) < 1e-5)
+    assert np.all(np.isfinite(r["cubic_signed_error"])) and np.all(np.abs(r["cubic_signed_error"]) < 1e-5)
     assert r.summary()[0]["max_abs_cubic_error"] < 1e-5
 
 

@@ -67,8 +67,8 @@ def test_group_answers_match_plain_python(key, i):
         assert e["bracket"] == pytest.approx(list(ref["bracket"]), abs=1e-12)
         assert e["linear"] == pytest.approx(ref["linear"], abs=t_abs)
         assert e["cubic"] == pytest.approx(ref["cubic"], abs=t_abs)
-        assert e["linear_error"] == pytest.approx(abs(ref["linear"] - exact), abs=t_abs)
-        assert e["cubic_error"] == pytest.approx(abs(ref["cubic"] - exact), abs=t_abs)
+        assert e["linear_t_hat_error"] == pytest.approx(abs(ref["linear"] - exact), abs=t_abs)
+        assert e["cubic_t_hat_error"] == pytest.approx(abs(ref["cubic"] - exact), abs=t_abs)
         assert e["cubic_error_estimate"] == pytest.approx(ref["error_estimate"],
                                                           abs=tolerance("3(d) error estimate").value)
         errors.append((e["step"], abs(ref["linear"] - exact), abs(ref["cubic"] - exact)))
@@ -260,8 +260,8 @@ def test_cli_csv_is_a_plain_table(class_file, tmp_path, capsys):
     assert list(df["h0.2_t_hat_inside"].fillna("")) == ["no", "yes", "", "no"]
     assert df["h0.2_bracket_lo"][1] == 9.6 and df["h0.2_left_at"][2] == 4.0  # t_j = j h, no float noise
     for h in ("0.01", "0.001", "0.0001"):
-        for col in ("j", "bracket_lo", "bracket_hi", "linear", "linear_error", "linear_order", "cubic",
-                    "cubic_error", "cubic_order", "cubic_error_estimate"):
+        for col in ("j", "bracket_lo", "bracket_hi", "linear", "linear_t_hat_error", "linear_order", "cubic",
+                    "cubic_t_hat_error", "cubic_order", "cubic_error_estimate"):
             assert f"h{h}_{col}" in df
     for k in range(4):
         assert {f"3d_node{k}", f"3d_z2{k}", f"3d_t{k}", f"3d_coefficient{k}"} <= set(df)

@@ -127,5 +127,5 @@ def test_a_sweep_is_a_table():
     assert not r["cubic"].flags.writeable
     df = r.to_frame()
     assert list(df.columns) == list(r.columns) and len(df) == len(r) == 2
-    assert df["cubic_error"].tolist() == r["cubic_error"].tolist()
+    assert df["cubic_signed_error"].tolist() == r["cubic_signed_error"].tolist()
     assert r == r and r != sweep(np.radians([30.0, 60.0]), [1e-3], ["taylor2"])

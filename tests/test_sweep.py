@@ -53,9 +53,9 @@ def test_error_falls_with_the_step_and_failures_are_reported():
     # h = 0.2 and 1e-2 at 179.5 degrees: taylor2's energy error takes the discrete pendulum
     # over the top; the row says so (status) and carries NaN, not a guess.
     assert big["status"][1] == "left_oscillation"
-    assert math.isnan(big["cubic"][1]) and math.isnan(big["cubic_error"][1])
-    e2 = abs(r.select("taylor2", 1e-2)["cubic_error"][0])
-    e3 = abs(r.select("taylor2", 1e-3)["cubic_error"][0])
+    assert math.isnan(big["cubic"][1]) and math.isnan(big["cubic_signed_error"][1])
+    e2 = abs(r.select("taylor2", 1e-2)["cubic_signed_error"][0])
+    e3 = abs(r.select("taylor2", 1e-3)["cubic_signed_error"][0])
     assert 50 < e2 / e3 < 200  # order 2: a factor 100 for h / 10
     summary = r.summary()
     assert [s["step"] for s in summary] == [0.2, 1e-2, 1e-3]
@@ -149,7 +149,7 @@ def test_plot_draws_one_line_per_method_and_step():
         ok = sel["status"] == "found"
         x, y = line.get_data()
         assert np.array_equal(x, np.degrees(sel["amplitude"][ok]))
-        assert np.array_equal(y, np.maximum(np.abs(sel["cubic_error"][ok]), 1e-17))
+        assert np.array_equal(y, np.maximum(np.abs(sel["cubic_signed_error"][ok]), 1e-17))
     assert len(ax.lines[1].get_xdata()) < 3  # h = 0.5 at 179.9 deg goes over the top: not drawn
 
 

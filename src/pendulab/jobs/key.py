@@ -386,8 +386,8 @@ def group_answers(students: Sequence[int]) -> dict[str, Any]:
     }
     estimates = [{
         "step": e.step, "j": e.j, "bracket": [_time(e.j, e.step), _time(e.j + 1, e.step)],
-        "linear": e.linear, "linear_error": abs(e.linear - r.t_hat), "linear_order": _f(lo_),
-        "cubic": e.cubic, "cubic_error": abs(e.cubic - r.t_hat), "cubic_order": _f(co),
+        "linear": e.linear, "linear_t_hat_error": abs(e.linear - r.t_hat), "linear_order": _f(lo_),
+        "cubic": e.cubic, "cubic_t_hat_error": abs(e.cubic - r.t_hat), "cubic_order": _f(co),
         "cubic_error_estimate": e.cubic_error_estimate,
     } for e, lo_, co in zip(r.estimates, r.linear_orders, r.cubic_orders)]
     ip = r.cubic.interpolation

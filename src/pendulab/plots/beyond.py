@@ -52,7 +52,7 @@ def sweep_errors(result: SweepResult, ax: Axes | None = None) -> Axes:
     for row in result.summary():
         r = result.select(row["method"], row["step"])
         ok = r["status"] == "found"
-        err = np.maximum(np.abs(r["cubic_error"][ok]), _FLOOR)
+        err = np.maximum(np.abs(r["cubic_signed_error"][ok]), _FLOOR)
         (line,) = ax.semilogy(np.degrees(r["amplitude"][ok]), err, label=f"{row['method']}, h = {row['step']:g}")
         lines.append(line)
     ax.set_xlabel(r"amplitude $\alpha$ (degrees)")

@@ -93,8 +93,8 @@ def csv_columns(key: AnswerKey) -> list[tuple[str, Any]]:
     ]
     steps = [e["step"] for e in key.groups[0]["estimates"]] if key.groups else []
     for i, h in enumerate(steps):
-        for name in ("j", "bracket_lo", "bracket_hi", "linear", "linear_error", "linear_order", "cubic",
-                     "cubic_error", "cubic_order", "cubic_error_estimate"):
+        for name in ("j", "bracket_lo", "bracket_hi", "linear", "linear_t_hat_error", "linear_order", "cubic",
+                     "cubic_t_hat_error", "cubic_order", "cubic_error_estimate"):
             if name == "bracket_lo":
                 get: Any = lambda g, i=i: g["estimates"][i]["bracket"][0]  # noqa: E731
             elif name == "bracket_hi":
@@ -233,7 +233,7 @@ def _pdf(key: AnswerKey) -> bytes:
         cells = [str(g["line"]), ", ".join(map(str, g["students"])), str(g["sum"]), g["length_text"],
                  num(g["t_hat"], 16), shown, inside]
         for e in g["estimates"]:
-            cells.append(f"{num(e['cubic'], 12)} \\ #text(size: 7pt)[{sci(e['cubic_error'], 2)}]")
+            cells.append(f"{num(e['cubic'], 12)} \\ #text(size: 7pt)[{sci(e['cubic_t_hat_error'], 2)}]")
         ip = g["interpolation"]
         cells += [sci(ip["error_estimate"], 2), "yes" if ip["negligible"] else "no",
                   "" if g["duplicate_of"] is None else f"*line {g['duplicate_of']}*"]

@@ -181,6 +181,6 @@ def sweep(
     for key in ("period", "status", "steps", "linear", "cubic", "cubic_error_estimate"):
         columns[key] = np.concatenate([p[key] for p in parts])
     columns["status"] = np.asarray(STATUS)[columns["status"]]
-    columns["linear_error"] = columns["linear"] - columns["period"]
-    columns["cubic_error"] = columns["cubic"] - columns["period"]
+    columns["linear_signed_error"] = columns["linear"] - columns["period"]
+    columns["cubic_signed_error"] = columns["cubic"] - columns["period"]
     return SweepResult(columns, g)

@@ -25,7 +25,7 @@ class SweepResult(Result):
     Columns (all arrays of the same length): ``method`` (str), ``order``, ``step``,
     ``length``, ``amplitude`` (rad), ``period`` (AGM period (8), converged), ``status`` (one of
     :data:`STATUS`), ``steps`` (steps taken), ``linear``, ``cubic`` (period estimates; NaN
-    unless ``status == "found"``), ``linear_error``, ``cubic_error`` (``estimate - period``),
+    unless ``status == "found"``), ``linear_signed_error``, ``cubic_signed_error`` (``estimate - period``, signed),
     ``cubic_error_estimate`` (the interpolation error estimate of problem 3(d)); and ``g``
     (m/s^2), the same for every row.
     """
@@ -59,7 +59,7 @@ class SweepResult(Result):
         for method, step in keys:
             r = self.select(method, step)
             ok = r["status"] == "found"
-            rel = np.abs(r["cubic_error"][ok] / r["period"][ok])
+            rel = np.abs(r["cubic_signed_error"][ok] / r["period"][ok])
             out.append(
                 {
                     "method": method,
@@ -67,7 +67,7 @@ class SweepResult(Result):
                     "step": step,
                     "pendulums": int(len(ok)),
                     "found": int(ok.sum()),
-                    "max_abs_cubic_error": float(np.max(np.abs(r["cubic_error"][ok]))) if ok.any() else math.nan,
+                    "max_abs_cubic_error": float(np.max(np.abs(r["cubic_signed_error"][ok]))) if ok.any() else math.nan,
                     "max_rel_cubic_error": float(rel.max()) if ok.any() else math.nan,
                     "pendulum_steps": int(r["steps"].sum()),
                 }
