@@ -30,12 +30,12 @@ def test_gravity_json_and_units(cli):
 
 def test_newton_json(cli):
     data = cli("newton", "--json").json
-    for key in ("alpha", "alpha_degrees", "iterates", "q", "k_max", "asymptotic_constant", "interval", "error_estimate"):
+    for key in ("alpha", "alpha_deg", "iterates", "q", "k_max", "asymptotic_constant", "interval", "error_estimate"):
         assert key in data
     # The library's root (tests/test_newton.py checks it against brentq and mpmath).
     z = problem2().alpha
     assert data["alpha"] == z
-    assert data["alpha_degrees"] == math.degrees(z)
+    assert data["alpha_deg"] == math.degrees(z)
     assert data["interval"][0] < z < data["interval"][1]
     assert all(c["holds"] for c in data["interval_conditions"])
     start = cli("newton", "--x0", "50deg", "--json").json

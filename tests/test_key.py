@@ -357,7 +357,7 @@ def test_the_coursework_programs_reach_the_class_wide_tolerances(key):
     _a, b, _, _ = p2.interval()
     xs, delta = p2.newton(b)
     q, _, k_max = p2.quotients(xs, delta)
-    assert math.radians(c["problem2"]["interval_degrees"][0]) <= xs[-1] <= math.radians(c["problem2"]["interval_degrees"][1])
+    assert math.radians(c["problem2"]["interval_deg"][0]) <= xs[-1] <= math.radians(c["problem2"]["interval_deg"][1])
     assert c["problem2"]["alpha"] == pytest.approx(xs[-1], abs=tolerance("2 alpha").value)
     assert c["problem2"]["k_max"] == k_max
     assert c["problem2"]["q"][:k_max + 1] == pytest.approx(q[:k_max + 1], rel=tolerance("2 q_k for k <= k_max").value)

@@ -57,7 +57,7 @@ def test_normal_equations_against_python_sums(p4):
     assert p4.fit.normal_matrix.tolist() == a6
     assert p4.fit.normal_rhs.tolist() == b6
     assert p4.fit.normal_matrix[0, 0] == 401.0
-    assert np.allclose(p4.fit.normal_matrix_exact, a, rtol=0, atol=1e-11)
+    assert np.allclose(p4.fit.normal_matrix_unrounded, a, rtol=0, atol=1e-11)
 
 
 def test_positive_definite(p4):
@@ -82,8 +82,8 @@ def test_coefficients_against_lstsq(p4):
     # The rounding to 6 decimals moves them by at most ||A^-1|| (||dA|| ||c|| + ||dr||).
     fit = p4.fit
     shift = np.max(np.abs(fit.coefficients - ref))
-    da = np.linalg.norm(fit.normal_matrix - fit.normal_matrix_exact, 2)
-    dr = np.linalg.norm(fit.normal_rhs - fit.normal_rhs_exact)
+    da = np.linalg.norm(fit.normal_matrix - fit.normal_matrix_unrounded, 2)
+    dr = np.linalg.norm(fit.normal_rhs - fit.normal_rhs_unrounded)
     bound = (da * np.linalg.norm(ref) + dr) / np.linalg.eigvalsh(fit.normal_matrix)[0]
     assert shift <= bound
     assert fit.coefficient_shift == pytest.approx(shift, rel=1e-6)

@@ -32,8 +32,8 @@ def test_root_against_brentq_and_mpmath():
     assert r.alpha == pytest.approx(z_brent, abs=4e-15)
     assert abs(r.alpha - float(z_mp)) <= r.run.error_estimate  # the estimate bounds the true error
     assert abs(r.alpha - float(z_mp)) < 4e-15
-    assert r.alpha_degrees == pytest.approx(float(mpmath.degrees(z_mp)), abs=1e-12)
-    assert r.alpha_degrees == pytest.approx(57.1921010531797, abs=1e-12)  # degrees(mpmath root)
+    assert r.alpha_deg == pytest.approx(float(mpmath.degrees(z_mp)), abs=1e-12)
+    assert r.alpha_deg == pytest.approx(57.1921010531797, abs=1e-12)  # degrees(mpmath root)
     assert r.closed_form == pytest.approx(float(z_mp), abs=1e-14)
 
 
@@ -41,7 +41,7 @@ def test_interval_conditions_hold_with_their_numbers():
     r = problem2()
     chk = r.interval
     assert chk.holds and len(chk.conditions) == 5
-    assert r.interval_degrees == (55.0, 60.0)
+    assert r.interval_deg == (55.0, 60.0)
     assert chk.a < float(root_mp()) < chk.b
     # Sign change, checked with the independent f.
     assert f_ref(chk.a) < 0 < f_ref(chk.b)

@@ -201,7 +201,7 @@ def test_problem2_is_the_engines():
     p2 = P["problem2.py"]
     a, b, steps, holds = p2.interval()
     r = problems.problem2()
-    assert holds and (math.degrees(a), math.degrees(b)) == pytest.approx(r.interval_degrees, abs=1e-12)
+    assert holds and (math.degrees(a), math.degrees(b)) == pytest.approx(r.interval_deg, abs=1e-12)
     assert steps == (r.condition_values["step_a"]["step"], r.condition_values["step_b"]["step"])
     x0 = a if p2.f(a) * p2.d2f(a) > 0 else b
     assert x0 == r.x0

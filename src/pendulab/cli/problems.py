@@ -118,7 +118,7 @@ def newton(length, target, x0, g, as_json):
         return
     e = r.equation
     click.echo(f"f(alpha) = (2 pi/p)(1 + sin^2(alpha/2)/4) - {e.target!r},  p = sqrt(g/l) = {e.p!r}")
-    a, b = r.interval_degrees
+    a, b = r.interval_deg
     click.echo(f"interval [a, b] = [{a:g}, {b:g}] deg = [{chk.a!r}, {chk.b!r}] rad:")
     for c in chk.conditions:
         click.echo(f"  [{'ok' if c.holds else 'FAILS'}] {condition_text(c)}")
@@ -133,7 +133,7 @@ def newton(length, target, x0, g, as_json):
     click.echo(f"k_max = {run.k_max}: the last q_k whose rounding error bound is <= 1%")
     q_kmax = f"{run.q_kmax:.6g}" if run.q_kmax is not None else "none (no q_k free of rounding)"
     click.echo(f"asymptotic constant |f''(z)/(2 f'(z))| = {run.asymptotic_constant:.6g}; q_kmax = {q_kmax}")
-    click.echo(f"alpha = {r.alpha!r} rad = {r.alpha_degrees!r} deg  (error estimate {run.error_estimate:.1e} rad)")
+    click.echo(f"alpha = {r.alpha!r} rad = {r.alpha_deg!r} deg  (error estimate {run.error_estimate:.1e} rad)")
 
 
 def condition_text(c: Condition) -> str:

@@ -230,7 +230,7 @@ class Problem2(Result):
         ``f(alpha) = (2 pi/p)(1 + sin^2(alpha/2)/4) - target``, with ``p``, ``f``, ``f'``, ``f''``.
     interval : IntervalCheck
         2(a): ``[a, b]`` and the five sufficient conditions, each with its numbers.
-    interval_degrees : (float, float)
+    interval_deg : (float, float)
         ``[a, b]`` in degrees.
     x0 : float
         The starting value (rad).
@@ -239,7 +239,7 @@ class Problem2(Result):
     x0_in_interval : bool
     run : NewtonResult
         Iterates, corrections, ``q_k``, ``k_max``, asymptotic constant, error estimate.
-    alpha, alpha_degrees : float
+    alpha, alpha_deg : float
         The last iterate, rad and degrees.
     closed_form : float
         ``2 arcsin(2 sqrt(target p/(2 pi) - 1))``: (9) solved by hand, as a check.
@@ -257,13 +257,13 @@ class Problem2(Result):
 
     equation: PeriodEquation
     interval: IntervalCheck
-    interval_degrees: tuple[float, float]
+    interval_deg: tuple[float, float]
     x0: float
     x0_from_fourier: bool
     x0_in_interval: bool
     run: NewtonResult
     alpha: float
-    alpha_degrees: float
+    alpha_deg: float
     closed_form: float
     condition_values: dict[str, dict[str, float]]
     ratios: tuple[float | None, ...]
@@ -283,11 +283,11 @@ class Problem2(Result):
         e, chk = self.equation, self.interval
         return {
             "length": e.length, "target": e.target, "g": e.g, "p": e.p,
-            "alpha": self.alpha, "alpha_degrees": self.alpha_degrees, "closed_form": self.closed_form,
+            "alpha": self.alpha, "alpha_deg": self.alpha_deg, "closed_form": self.closed_form,
             "x0": self.x0, "x0_from_fourier": self.x0_from_fourier, "x0_in_interval": self.x0_in_interval,
             **self.run.to_dict(),
             "ratios": list(self.ratios),
-            "interval": [chk.a, chk.b], "interval_degrees": list(self.interval_degrees),
+            "interval": [chk.a, chk.b], "interval_deg": list(self.interval_deg),
             "interval_conditions": [{"name": c.name, "holds": c.holds, **c.values} for c in chk.conditions],
             "curvature_positive": self.curvature_positive,
         }
@@ -325,13 +325,13 @@ def problem2(
     return Problem2(
         equation=eq,
         interval=chk,
-        interval_degrees=(a_deg, b_deg),
+        interval_deg=(a_deg, b_deg),
         x0=start,
         x0_from_fourier=x0 is None,
         x0_in_interval=chk.a <= start <= chk.b,
         run=run,
         alpha=run.root,
-        alpha_degrees=math.degrees(run.root),
+        alpha_deg=math.degrees(run.root),
         closed_form=eq.closed_form(),
         condition_values={key: dict(c.values) for key, c in zip(CONDITION_KEYS, chk.conditions)},
         ratios=ratios,
@@ -416,13 +416,13 @@ class Problem4(Result):
         return {
             "length": self.length, "amplitude": self.amplitude, "step": self.step, "t_hat": self.t_hat,
             "t_max": self.t_max, "t_max_rule": self.t_max_rule, "points": self.points,
-            "last_points": self.last_points, "round": f.decimals,
+            "last_points": self.last_points, "decimals": f.decimals,
             "normal_matrix": f.normal_matrix, "normal_rhs": f.normal_rhs,
             **f.definiteness.to_dict(),
             "coefficients": f.coefficient_dict(),
             "reference_coefficients": dict(zip(f.names, f.reference_coefficients.tolist())),
             "coefficient_shift": f.coefficient_shift,
-            "ssd": f.ssd, "max_deviation": f.max_deviation, "max_deviation_at": f.argmax_deviation,
+            "ssd": f.ssd, "max_deviation": f.max_deviation, "argmax_deviation": f.argmax_deviation,
             "tolerance": self.tolerance, "below_tolerance": self.below_tolerance,
             "exact_deviation": self.exact_deviation, "exact_deviation_at": self.exact_deviation_at,
             "taylor_error": self.taylor_error,

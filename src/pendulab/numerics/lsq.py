@@ -203,7 +203,7 @@ class LeastSquaresFit(Result):
         Decimals the normal equations were rounded to (None: not rounded).
     normal_matrix, normal_rhs : ndarray
         ``A`` and ``r`` as solved (rounded when ``decimals`` is set).
-    normal_matrix_exact, normal_rhs_exact : ndarray
+    normal_matrix_unrounded, normal_rhs_unrounded : ndarray
         The same before rounding.
     definiteness : Definiteness
         The proof that ``normal_matrix`` is symmetric positive definite.
@@ -232,8 +232,8 @@ class LeastSquaresFit(Result):
     decimals: int | None
     normal_matrix: np.ndarray
     normal_rhs: np.ndarray
-    normal_matrix_exact: np.ndarray
-    normal_rhs_exact: np.ndarray
+    normal_matrix_unrounded: np.ndarray
+    normal_rhs_unrounded: np.ndarray
     definiteness: Definiteness
     coefficients: np.ndarray
     reference_coefficients: np.ndarray
@@ -299,12 +299,12 @@ def least_squares(
     names = tuple(names)
     if len(names) != len(basis):
         raise InputError("names", len(names), f"{len(basis)} names, one per basis function")
-    a_exact, r_exact = normal_equations(t, y, basis)
+    a_unrounded, r_unrounded = normal_equations(t, y, basis)
     if decimals is None:
-        a, r = a_exact, r_exact
+        a, r = a_unrounded, r_unrounded
     else:
-        a, r = round_half_up(a_exact, decimals), round_half_up(r_exact, decimals)
-    proof = definiteness(a, a_exact if decimals is not None else None)
+        a, r = round_half_up(a_unrounded, decimals), round_half_up(r_unrounded, decimals)
+    proof = definiteness(a, a_unrounded if decimals is not None else None)
     if not proof.positive_definite:
         raise NumericalError(
             f"the normal matrix is not positive definite (smallest eigenvalue {proof.min_eigenvalue:.3e}): "
@@ -323,8 +323,8 @@ def least_squares(
         decimals=decimals,
         normal_matrix=a,
         normal_rhs=r,
-        normal_matrix_exact=a_exact,
-        normal_rhs_exact=r_exact,
+        normal_matrix_unrounded=a_unrounded,
+        normal_rhs_unrounded=r_unrounded,
         definiteness=proof,
         coefficients=coef,
         reference_coefficients=ref,

@@ -44,25 +44,25 @@ def inverse_cubic(x, y):
         for k in range(5))
     return {"p0": p, "coef": c, "dd4": c[4], "e0": c[4] * prod, "rounding": rounding}
 
-def period(l, h, exact):
+def period(l, h, reference):
     """3(c)-(d): the bracket, the zero of the line through j and j+1, and p(0)."""
     # up to 1.5 T^ (8) + 4h: the return to P and the two steps after it are in the lists
-    t, z1, z2 = taylor(l, ALPHA, h, 1.5 * exact + 4 * h)
+    t, z1, z2 = taylor(l, ALPHA, h, 1.5 * reference + 4 * h)
     j = sign_change(z1, z2)[0]
     nodes = [j - 1, j, j + 1, j + 2, j - 2]  # four around the change; a fifth for e(0)
     x, y = [z2[k] for k in nodes], [t[k] for k in nodes]
     return {"h": h, "j": j, "bracket": (t[j], t[j + 1]), "z2": x, "t": y,
             "linear": t[j] + h * z2[j] / (z2[j] - z2[j + 1]), **inverse_cubic(x, y)}
 
-def plot_t_max(l, exact, h=0.2):
+def plot_t_max(l, reference, h=0.2):
     """3(b): 1.25 times the first event of the h = 0.2 simulation over 4 T^: its
     return to P (T^ if later), or the time it goes over the top; a multiple of h."""
-    t, z1, z2 = taylor(l, ALPHA, h, SEARCH * exact)
+    t, z1, z2 = taylor(l, ALPHA, h, SEARCH * reference)
     j, over = sign_change(z1, z2)
     if j is not None:
-        event = max(exact, t[j + 1])
+        event = max(reference, t[j + 1])
     else:  # over the top at t[over], or neither within 4 T^
-        event = t[over] if over is not None else SEARCH * exact / 1.25
+        event = t[over] if over is not None else SEARCH * reference / 1.25
     # rounded to 9 decimals first: t_24 = 24 * 0.2 gives 1.25 t / h = 30.000000000000004
     return h * math.ceil(round(1.25 * event / h, 9)), j, over, t
 
@@ -72,25 +72,25 @@ def order(e0, e1, h0, h1):
 if __name__ == "__main__":
     l_text = group_length([int(s) for s in sys.argv[1:]] or [262, 407, 634])[2]
     l = float(l_text)
-    exact = t_hat(l, ALPHA)
-    t_max, j, over, t = plot_t_max(l, exact)
-    print(f"3(b) l = {l_text} m, T^ = {exact!r} s, t_max = {t_max:.6g} s; h = 0.2:",
+    reference = t_hat(l, ALPHA)
+    t_max, j, over, t = plot_t_max(l, reference)
+    print(f"3(b) l = {l_text} m, T^ = {reference!r} s, t_max = {t_max:.6g} s; h = 0.2:",
           f"T in [{t[j]:.6g}, {t[j + 1]:.6g}]" if j is not None else
           f"over the top at t = {t[over]:.6g}" if over is not None else "no return")
     print("3(c)  h       j  bracket        linear              error      p(0)")
-    rows = [period(l, h, exact) for h in STEPS]
+    rows = [period(l, h, reference) for h in STEPS]
     for r in rows:
         print(f"{r['h']:6.0e} {r['j']:6d}  {r['bracket'][0]:.4f} {r['bracket'][1]:.4f}",
-              f"{r['linear']!r:<19} {abs(r['linear'] - exact):.3e}  {r['p0']!r}")
+              f"{r['linear']!r:<19} {abs(r['linear'] - reference):.3e}  {r['p0']!r}")
     for a, b in zip(rows, rows[1:]):
-        e0, e1 = abs(a["linear"] - exact), abs(b["linear"] - exact)
+        e0, e1 = abs(a["linear"] - reference), abs(b["linear"] - reference)
         print(f"     order from h = {a['h']:.0e} to {b['h']:.0e}:",
               f"{order(e0, e1, a['h'], b['h']):.2f}")
     r = rows[STEPS.index(1e-3)]
     print("3(d) h = 1e-3: z2_k, t_k, divided differences (nodes j-1..j+2, j-2)")
     for k in range(5):
         print(f"    {r['z2'][k]!r:<24} {r['t'][k]:.3f}  {r['coef'][k]!r}")
-    error = abs(r["p0"] - exact)  # the Taylor method's error in the period
+    error = abs(r["p0"] - reference)  # the Taylor method's error in the period
     small = max(abs(r["e0"]), r["rounding"]) < NEGLIGIBLE * error
     print(f"    p(0) = {r['p0']!r}, e(0) ~ {r['e0']:.3e}",
           f"(rounding {r['rounding']:.2e}); |p(0) - T^| = {error:.3e}:",

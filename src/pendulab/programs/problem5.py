@@ -29,20 +29,20 @@ def gauss3(f, a, b, n):
 def period(n):
     return 4 * math.sqrt(L / (2 * G)) * gauss3(integrand, 0.0, ALPHA, n)
 
-def table(exact):
+def table(reference):
     """5(b)-(d): n = 1, 10, ..., 10^5, the period by S_n, its error, and the rate p
     of error ~ n^(-p) from n/10 to n."""
-    rows = [(1, period(1), abs(period(1) - exact), None)]
+    rows = [(1, period(1), abs(period(1) - reference), None)]
     for k in range(1, 6):
         p = period(10**k)
-        e = abs(p - exact)
+        e = abs(p - reference)
         rows.append((10**k, p, e, math.log10(rows[-1][2] / e)))
     return rows
 
 if __name__ == "__main__":
-    exact = t_hat(L, ALPHA)
-    rows = table(exact)
-    print(f"T^ = {exact!r} s")
+    reference = t_hat(L, ALPHA)
+    rows = table(reference)
+    print(f"T^ = {reference!r} s")
     print(f"5(b) one application: {rows[0][1]!r} s, error {rows[0][2]:.3e}")
     print(f"5(c) n = 10:          {rows[1][1]!r} s, error {rows[1][2]:.3e}")
     print("5(d)      n  estimate            error      rate")

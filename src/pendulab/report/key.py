@@ -129,8 +129,8 @@ def class_rows(key: AnswerKey) -> list[tuple[str, str, Any]]:
     for name, value in c["problem1"].items():
         rows.append(("1", name, value))
     p2 = c["problem2"]
-    rows += [("2", "interval_degrees_a", p2["interval_degrees"][0]), ("2", "interval_degrees_b", p2["interval_degrees"][1]),
-             ("2", "x0", p2["x0"]), ("2", "alpha", p2["alpha"]), ("2", "alpha_degrees", p2["alpha_degrees"])]
+    rows += [("2", "interval_deg_a", p2["interval_deg"][0]), ("2", "interval_deg_b", p2["interval_deg"][1]),
+             ("2", "x0", p2["x0"]), ("2", "alpha", p2["alpha"]), ("2", "alpha_deg", p2["alpha_deg"])]
     rows += [("2", f"x_{k}", x) for k, x in enumerate(p2["iterates"])]
     rows += [("2", f"q_{k}", q) for k, q in enumerate(p2["q"])]
     rows += [("2", f"q_{k}_rounding", q) for k, q in enumerate(p2["q_rounding"])]
@@ -193,8 +193,8 @@ def class_blocks(key: AnswerKey) -> list[dict[str, Any]]:
         rows.append([str(k), num(x, 17), "—" if q is None else num(q, 10), "—" if rho is None else sci(rho, 2)])
     blocks.append(_block(
         "Problem 2", ["$k$", "$x_k$ (rad)", "$q_k$", "rounding of $q_k$"], rows,
-        f"$[a, b] = [{num(p2['interval_degrees'][0], 8)}°, {num(p2['interval_degrees'][1], 8)}°]$, "
-        f"$x_0 = {num(p2['x0'], 17)}$; $alpha = {num(p2['alpha'], 17)}$ rad $= {num(p2['alpha_degrees'], 15)}°$; "
+        f"$[a, b] = [{num(p2['interval_deg'][0], 8)}°, {num(p2['interval_deg'][1], 8)}°]$, "
+        f"$x_0 = {num(p2['x0'], 17)}$; $alpha = {num(p2['alpha'], 17)}$ rad $= {num(p2['alpha_deg'], 15)}°$; "
         f"$k_max = {p2['k_max']}$ (rounding of $q_k$ at most 1%), "
         f"$K_infinity = |f''(z) \\/ (2 f'(z))| = {num(p2['asymptotic_constant'], 10)}$; "
         f"error estimate of the last iterate {sci(p2['error_estimate'], 2)} rad."))
