@@ -183,15 +183,47 @@ def test_flow_series_is_the_solution_of_the_ode():
         assert s == pytest.approx(float(ref), abs=1e-16)
 
 
-def test_sweep_and_estimate_agree_where_theta_prime_underflows():
+def plain_first_return(alpha, h, t_max, length=1.0):
+    """j of the coursework's own program (3) in plain Python doubles, subnormals included."""
+    from plain_pendulum import problem3, taylor
+
+    _, z1, z2 = taylor.taylor(length, alpha, h, t_max)
+    return problem3.sign_change(z1, z2)[0]
+
+
+def _subnormal_walk():
+    """alpha from 1e-300 down to the smallest subnormal: decades, then multiples of 2^-1074
+    around the last that moves at h = 1e-3 (h (g/l) alpha = 2^-1075 between 50 and 51 of them)."""
+    tiny = 5e-324
+    return [10.0**-e for e in (300, 306, 308, 310, 315, 318, 320, 321)] + [n * tiny for n in (200, 100, 52, 51, 50, 49, 20, 1)]
+
+
+def test_the_underflow_refusal_is_where_plain_3_never_returns():
+    # Plain (3) in doubles returns with subnormal theta' steps (j = 2006 down to 1e-315, then
+    # other j as the steps quantise); it never moves once h (g/l) alpha rounds to zero.
+    for alpha in _subnormal_walk():
+        s = search_period(1.0, alpha, 1e-3)
+        j = plain_first_return(alpha, 1e-3, s.t_max)
+        assert (s.estimate.j if s.found else None) == j, alpha
+        assert s.underflow == (j is None), alpha
+        if s.underflow:
+            assert s.suggested_t_max is None and s.moving_amplitude == pytest.approx(5e-324 / (1e-3 * G) / 2)
+            # No t_max helps: the first step of (3) leaves the state where it is.
+            assert plain_first_return(alpha, 1e-3, 100 * s.t_max) is None
+    assert search_period(1.0, 1e-320, 1e-3).found and search_period(1.0, 49 * 5e-324, 1e-3).underflow
+
+
+def test_sweep_and_estimate_agree_where_theta_prime_is_subnormal():
     from pendulab.jobs.sweep import sweep
 
-    # h (g/l) alpha = 9.8e-309 < 2.2e-308: theta' moves in subnormal steps.
-    with pytest.raises(NoReturnError, match="underflow"):
-        estimate_period(1.0, 1e-306, 1e-3)
-    r = sweep(np.array([1e-306, 5e-324, 1e-3]), [1e-3])
-    assert list(r["status"]) == ["no_return", "no_return", "found"]
-    assert np.isnan(r["cubic"][:2]).all()
+    alphas = np.array(_subnormal_walk() + [1e-3])
+    r = sweep(alphas, [1e-3])
+    for a, status, cubic in zip(alphas, r["status"], r["cubic"]):
+        s = search_period(1.0, float(a), 1e-3)
+        assert status == s.status.name.lower(), a
+        assert (cubic == s.estimate.cubic) if s.found else np.isnan(cubic), a
+    with pytest.raises(NoReturnError, match="no t_max helps"):
+        estimate_period(1.0, 49 * 5e-324, 1e-3)
 
 
 # --- failure as data: search_period's status and its numbers ---------------------------------
@@ -230,10 +262,10 @@ def test_no_return_is_a_status_with_a_t_max_that_holds_the_return():
 
 
 def test_an_underflowing_motion_is_no_return_that_no_t_max_helps():
-    s = search_period(1.0, 1e-300, 1e-9, t_max=1.0)  # h (g/l) alpha ~ 1e-308, below the smallest normal double
+    s = search_period(1.0, 1e-320, 1e-6, t_max=1.0)  # h (g/l) alpha ~ 1e-325 rounds to zero: it never moves
     assert s.status == Status.NO_RETURN and s.underflow and s.suggested_t_max is None and s.j is None
     with pytest.raises(NoReturnError, match="no t_max helps"):
-        estimate_period(1.0, 1e-300, 1e-9, t_max=1.0)
+        estimate_period(1.0, 1e-320, 1e-6, t_max=1.0)
 
 
 _EDGE = st.sampled_from([0.0, -0.0, 5e-324, -5e-324, 1.0, -1.0, math.pi, -math.pi, math.nextafter(math.pi, 0),

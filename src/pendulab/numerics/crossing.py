@@ -25,6 +25,9 @@ from .period import agm_period
 from .results import Result
 from .simulation import MAX_STEPS
 
+#: The smallest subnormal double, ``2^-1074``: a product below half of it rounds to zero.
+SUBNORMAL = 2.0**-1074
+
 
 @dataclass(frozen=True, eq=False)
 class PeriodEstimate(Result):
@@ -133,9 +136,13 @@ class PeriodSearch(Result):
         The AGM period (8), iterated to convergence.
     suggested_t_max : float or None
         ``NO_RETURN``: a ``t_max`` that holds the return; None where no ``t_max`` helps
-        (``theta'`` changes below the smallest normal double: ``underflow``).
+        (the simulation never moves: ``underflow``).
     underflow : bool
-        ``NO_RETURN`` because ``h (g/l) alpha`` is below the smallest normal double.
+        ``NO_RETURN`` because the first step leaves ``(alpha, 0)`` where it is: its change
+        of ``theta'``, about ``h (g/l) alpha``, rounds to zero (:func:`stuck`).
+    moving_amplitude : float or None
+        ``underflow``: about the least amplitude whose first step moves at this step and
+        ``g/l``, ``2^-1075 / (h g/l)`` (half the smallest subnormal double over ``h g/l``), rad.
     t_left : float or None
         ``LEFT_OSCILLATION``: ``t_(j+1)``, the first point with ``|theta| >= pi``.
     j : int or None
@@ -154,6 +161,7 @@ class PeriodSearch(Result):
     period: float
     suggested_t_max: float | None = None
     underflow: bool = False
+    moving_amplitude: float | None = None
     t_left: float | None = None
     j: int | None = None
 
@@ -194,10 +202,9 @@ def search_period(
     c = -g / length
     common: dict[str, Any] = {"estimate": None, "length": length, "amplitude": alpha, "step": step, "g": g,
                               "t0": t0, "t_max": t_max, "method": method, "period": float(period)}
-    if alpha * abs(c) * step < sys.float_info.min:
-        # theta' changes by about h (g/l) sin(theta) per step: below the smallest normal
-        # double its changes are lost to underflow (5e-324 never moves theta' at all).
-        return PeriodSearch(Status.NO_RETURN, underflow=True, **common)
+    if stuck(int(m.code), m.order, alpha, c, step):
+        return PeriodSearch(Status.NO_RETURN, underflow=True, moving_amplitude=0.5 * (SUBNORMAL / abs(c * step)),
+                            **common)
     status, j, z1w, z2w = first_return_pieces(int(m.code), m.order, alpha, c, step, n)
     status = Status(int(status))
     if status == Status.NO_RETURN:
@@ -233,6 +240,26 @@ def search_period(
     )
     common["estimate"] = est
     return PeriodSearch(status, j=int(j), **common)
+
+
+def stuck(code: int, order: int, alpha: float, c: float, step: float) -> bool:
+    """Whether the first step of the method leaves ``Z_0 = (alpha, 0)`` where it is.
+
+    ``theta'`` changes by about ``h (g/l) sin(theta)`` a step; where that rounds to zero
+    (``alpha`` subnormal, ``h (g/l) alpha`` below half the smallest subnormal double) ``Z_0``
+    is a fixed point of the discrete map: the simulation never moves and no ``t_max`` holds a
+    return. Above it, subnormal steps still carry the motion (plain (3) in doubles returns
+    at ``alpha = 1e-320``, ``h = 1e-3``: ``tests/test_crossing.py``).
+    """
+    from ..engine.kernels import kernel_code, search_return
+
+    if not alpha * abs(c) * step < sys.float_info.min:  # a normal change of theta' moves it
+        return False
+    z1w, z2w = np.zeros(5), np.zeros(5)
+    z1w[2] = alpha
+    # one step of the search's own kernel (no other to compile): the window ends at Z_1
+    search_return(kernel_code(code, c, step), order, c, step, 2, 0, 1, z1w, z2w)
+    return bool(z1w[2] == alpha and z2w[2] == 0.0)
 
 
 def estimate_period(
@@ -279,10 +306,10 @@ def search_error(s: PeriodSearch) -> NumericalError:
     if s.underflow:
         k = s.g / s.length
         return NoReturnError(
-            f"amplitude {alpha:.3g} rad is too small for a simulation in double precision: theta' changes by "
-            f"about h (g/l) alpha = {k * step:.3g} x {alpha:.3g} rad/s per step, below the smallest normal double "
-            f"{sys.float_info.min:.3g}, so its sign changes are lost to underflow; use an amplitude >= "
-            f"{sys.float_info.min / (k * step):.3g} rad at this step (no t_max helps)"
+            f"amplitude {alpha:.3g} rad is too small for a simulation in double precision: the first step's change "
+            f"of theta', about h (g/l) alpha = {k * step:.3g} x {alpha:.3g} rad/s, underflows to zero (below half the "
+            f"smallest subnormal double, {SUBNORMAL:.3g}), so the simulation never moves; use an amplitude "
+            f"above {s.moving_amplitude:.3g} rad at this step (no t_max helps)"
         )
     if s.status == Status.NO_RETURN:
         return NoReturnError(

@@ -12,7 +12,6 @@ from __future__ import annotations
 
 import functools
 import math
-import sys
 from collections.abc import Iterator, Mapping
 from typing import TYPE_CHECKING, Any
 
@@ -105,10 +104,9 @@ def search_reason(s: PeriodSearch) -> str:
     status and data, in the page's words (the search's ``t_max`` is the page's, not the reader's)."""
     if s.underflow:
         k = s.g / s.length
-        return (f"amplitude {s.amplitude:.3g} rad is too small for a simulation in double precision: theta' changes by "
-                f"about h (g/l) alpha = {k * s.step * s.amplitude:.3g} rad/s per step, below the smallest normal double "
-                f"{sys.float_info.min:.3g}, so its sign changes are lost; use an amplitude >= "
-                f"{sys.float_info.min / (k * s.step):.3g} rad or a larger step")
+        return (f"amplitude {s.amplitude:.3g} rad is too small for a simulation in double precision: the first step's "
+                f"change of theta', about h (g/l) alpha = {k * s.step:.3g} x {s.amplitude:.3g} rad/s, rounds to zero, so the "
+                f"simulation never moves; use an amplitude above {s.moving_amplitude:.3g} rad or a larger step")
     if s.status == Status.LEFT_OSCILLATION:
         return (f"the discrete pendulum went over the top (|theta| >= pi) at t = {s.t_left:.6g} s, which the real one "
                 f"released at rest below pi never does: step h = {s.step:g} s is too large for amplitude "

@@ -27,10 +27,6 @@ def run_chunk(code: int, order: int, alphas: np.ndarray, lengths: np.ndarray, g:
     # One thread on a Dask worker (the worker's own threads run the chunks); the same kernel
     # as on all cores, so the same results bit for bit.
     status, j, _, z2w = first_returns(code, order, alphas, cs, h, n_steps, threads=None if parallel else 1)
-    # As estimate_period: where theta' changes by less than the smallest normal double per
-    # step, its sign change is lost to underflow; no return is found.
-    underflow = alphas * (g / lengths) * h < np.finfo(float).tiny
-    status = np.where(underflow, int(Status.NO_RETURN), status)
     found = status == Status.FOUND
     t = (j[:, None] - 2 + np.arange(5)) * h  # t_k = k h (6): nodes j-2 .. j+2
     with np.errstate(invalid="ignore", divide="ignore"):
