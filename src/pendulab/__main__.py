@@ -5,7 +5,8 @@ import sys
 
 
 def run() -> int:
-    """:func:`pendulab.cli.main`; Ctrl+C or SIGTERM while the command line loads is one line too.
+    """:func:`pendulab.cli.main`; a signal (Ctrl+C, SIGTERM, SIGHUP, SIGQUIT) while the command
+    line loads is one line too, and the status 128 + its number.
 
     Every import is inside (``signal`` loads ``enum``, ``core.interrupt`` loads ``threading``):
     before this function runs, only Python's start-up and the package's first lines (a few
@@ -19,24 +20,32 @@ def run() -> int:
     try:
         import signal
 
-        from .core.interrupt import terminate_handler
+        from .core.interrupt import install, signal_of, word
 
-        signal.signal(signal.SIGTERM, terminate_handler)  # before the command line's imports: they take a while
+        install()  # before the command line's imports: they take a while
+        if hasattr(signal, "SIGXFSZ"):  # `ulimit -f`: a write past it fails with EFBIG (one line), not a kill
+            signal.signal(signal.SIGXFSZ, signal.SIG_IGN)
+        from .core.streams import adopt_standard_streams
+
+        adopt_standard_streams()  # before anything opens a file: a closed stdout is held, not reused
         from .cli import main
 
         code = main()
     except KeyboardInterrupt as exc:  # while the command line loaded, or just after the command
-        from .core.interrupt import Terminated  # loaded, unless the Ctrl+C came while it loaded
-
-        term = isinstance(exc, Terminated)
-        sys.stderr.write(f"pendulab: {'terminated' if term else 'interrupted'}\n")
-        code = 143 if term else 130
+        signum = signal_of(exc)  # loaded, unless the signal came before the handlers were set
+        try:  # noqa: SIM105 (contextlib is not loaded yet)
+            sys.stderr.write(f"pendulab: {word(signum)}\n")
+        except (OSError, ValueError, AttributeError):
+            pass  # standard error gone: silence
+        code = 128 + signum
     import signal  # loaded, unless the Ctrl+C came while it loaded
 
     # The command is over and has said how: what is left is Python's shutdown, where a
     # signal would end the process by that signal instead (no line, another status).
     # Blocked from here, it stays pending until the process has exited with its status.
-    signal.pthread_sigmask(signal.SIG_BLOCK, {signal.SIGINT, signal.SIGTERM})
+    from .core.interrupt import ENDING
+
+    signal.pthread_sigmask(signal.SIG_BLOCK, set(ENDING))
     # Nor does the shutdown need the cycle collector: its last passes would examine and
     # free, one by one, every object the command made (after a report, over a tenth of
     # its CPU time), memory the system takes back at once when the process ends. Outputs
@@ -48,11 +57,11 @@ def run() -> int:
     # flush: the process ends here, with its status.
     threading = sys.modules.get("threading")
     if threading is not None and any(t.daemon and t.is_alive() for t in threading.enumerate()):
-        import contextlib  # loaded by then
-
         for stream in (sys.stdout, sys.stderr):
-            with contextlib.suppress(OSError, ValueError):  # a closed or broken pipe: nothing more to say
+            try:  # noqa: SIM105 (as above)
                 stream.flush()
+            except Exception:
+                pass
         os._exit(code)
     return code
 

@@ -17,8 +17,10 @@ from typing import Any
 
 import click
 
-from ..core.errors import InputError, MissingExtraError, PendulabError
-from ..core.interrupt import Terminated, terminate_handler
+from ..core import interrupt
+from ..core.errors import InputError, MissingExtraError, PendulabError, printable
+from ..core.interrupt import signal_of
+from ..core.streams import WriteError
 from ..core.version import __version__
 from ._common import TYPED, one_line, option_name
 
@@ -99,7 +101,7 @@ class LazyGroup(click.Group):
                 raise
             raise CliError(in_cli_words(exc, cmd, ctx.meta.get(TYPED, {}))) from exc
         except KeyboardInterrupt as exc:  # before click turns it into Abort (and prints a blank line)
-            raise Stopped(signal.SIGTERM if isinstance(exc, Terminated) else signal.SIGINT) from None
+            raise Stopped(signal_of(exc)) from None
 
     @staticmethod
     def _load(name: str) -> click.Command | None:
@@ -127,7 +129,7 @@ def cli() -> None:
 
 
 class Stopped(Exception):
-    """A signal (Ctrl+C's SIGINT, or SIGTERM) ended the command; raised after the cleanup ran."""
+    """A signal (Ctrl+C's SIGINT, SIGTERM, SIGHUP, SIGQUIT) ended the command; raised after the cleanup ran."""
 
     def __init__(self, signum: int):
         super().__init__(signum)
@@ -138,8 +140,9 @@ class StdoutError(Exception):
     """Standard output cannot be written (a full disk, a closed pipe). Not an ``OSError``:
     no handler of file errors on the way catches it for one of its own."""
 
-    def __init__(self, exc: OSError):
-        super().__init__(exc.strerror or str(exc))
+    def __init__(self, exc: OSError | WriteError):
+        reason = exc.reason if isinstance(exc, WriteError) else exc.strerror
+        super().__init__(reason or str(exc))
         self.errno = exc.errno
 
 
@@ -152,13 +155,13 @@ class _GuardedStdout:
     def write(self, text: str) -> int:
         try:
             return self._stream.write(text)
-        except OSError as exc:
+        except (OSError, WriteError) as exc:
             raise StdoutError(exc) from None
 
     def flush(self) -> None:
         try:
             self._stream.flush()
-        except OSError as exc:
+        except (OSError, WriteError) as exc:
             raise StdoutError(exc) from None
 
     def __getattr__(self, name: str) -> Any:
@@ -168,6 +171,9 @@ class _GuardedStdout:
 def _silence_stdout() -> None:
     """Point standard output at the null device: what is still buffered goes nowhere, and
     Python's final flush at exit does not fail a second time with a traceback."""
+    discard = getattr(sys.stdout, "discard", None)
+    if discard is not None:  # the checked writer's buffer (pendulab.core.streams.CheckedText)
+        discard()
     try:
         null = os.open(os.devnull, os.O_WRONLY)
         os.dup2(null, sys.stdout.fileno())
@@ -178,31 +184,38 @@ def _silence_stdout() -> None:
 
 def _stopped(where: str, signum: int) -> int:
     """One line for a command a signal stopped; the exit status 128 + the signal's number."""
-    word = "terminated" if signum == signal.SIGTERM else "interrupted"
-    with contextlib.suppress(OSError):
-        click.echo(f"{where}: {word}", err=True)
+    with contextlib.suppress(OSError, ValueError):
+        click.echo(f"{where}: {interrupt.word(signum)}", err=True)
     return 128 + signum
 
 
 def main(argv: list[str] | None = None) -> int:
     """Entry point: bad input becomes one line on stderr and exit status 2.
 
-    Ctrl+C ends a command with one line and 130, SIGTERM with one line and 143, both after
-    the command's cleanup (its temporary files and folders) ran.
+    Ctrl+C ends a command with one line and 130, SIGTERM with one line and 143, SIGHUP 129,
+    SIGQUIT 131, each after the command's cleanup (its temporary files and folders) ran. A
+    signal that some code on the way swallowed still ends the command so (no output is
+    committed after it: :func:`pendulab.core.interrupt.check_signals`).
     """
     args = sys.argv[1:] if argv is None else list(argv)
     sub = next((a for a in args if not a.startswith("-")), None)
     where = f"pendulab {sub}" if sub in COMMANDS else "pendulab"
     main_thread = threading.current_thread() is threading.main_thread()
-    old_term = signal.signal(signal.SIGTERM, terminate_handler) if main_thread else None
+    old = {s: signal.getsignal(s) for s in interrupt.ENDING} if main_thread else {}
+    if main_thread:
+        interrupt.install()
     stdout = sys.stdout
     sys.stdout = _GuardedStdout(stdout)
     try:
-        return _run(args, where)
+        code = _run(args, where)
+        if code == 0 and interrupt.received:  # a signal some code swallowed: still the command's end
+            code = _stopped(where, interrupt.received[0])
+        return code
     finally:
+        interrupt.received.clear()  # told: the next call (a test's) starts afresh
         sys.stdout = stdout
-        if main_thread:
-            signal.signal(signal.SIGTERM, old_term)
+        for s, handler in old.items():
+            signal.signal(s, handler if handler is not None else signal.SIG_DFL)
 
 
 def _run(args: list[str], where: str) -> int:
@@ -222,7 +235,8 @@ def _run(args: list[str], where: str) -> int:
     except Stopped as exc:
         return _stopped(where, exc.signum)
     except click.exceptions.Abort as exc:  # Ctrl+C while click parsed or prompted
-        return _stopped(where, signal.SIGTERM if isinstance(exc.__cause__, Terminated) else signal.SIGINT)
+        cause = exc.__cause__
+        return _stopped(where, signal_of(cause) if isinstance(cause, KeyboardInterrupt) else signal.SIGINT)
     except click.BadParameter as exc:
         # Our parameter types already name the option, the value and the range.
         opts = tuple(exc.param.opts) if exc.param is not None else ()
@@ -239,16 +253,35 @@ def _run(args: list[str], where: str) -> int:
         click.echo(f"{where}: error: {exc}", err=True)
         return 2
     except KeyboardInterrupt as exc:
-        return _stopped(where, signal.SIGTERM if isinstance(exc, Terminated) else signal.SIGINT)
+        return _stopped(where, signal_of(exc))
     except StdoutError as exc:
         _silence_stdout()
         return _stdout_error(where, exc.errno, str(exc))
+    except WriteError as exc:  # an output file (a full disk, `ulimit -f`)
+        with contextlib.suppress(OSError, ValueError):
+            click.echo(f"{where}: error: {printable(str(exc))}", err=True)
+        return 1
+    except OSError as exc:
+        if exc.errno not in _DISK_ERRORS:
+            raise
+        with contextlib.suppress(OSError, ValueError):
+            click.echo(f"{where}: error: {printable(_disk_error(exc))}", err=True)
+        return 1
     return 0
+
+
+#: Errors of a write to a file that no input can cause or fix: told in one line, exit 1.
+_DISK_ERRORS = frozenset(getattr(errno, n) for n in ("ENOSPC", "EFBIG", "EDQUOT", "EIO", "EROFS") if hasattr(errno, n))
+
+
+def _disk_error(exc: OSError) -> str:
+    where = exc.filename if exc.filename is not None else "a file"
+    return f"cannot write to {os.fsdecode(where) if isinstance(where, bytes) else where}: {exc.strerror or exc}"
 
 
 def _stdout_error(where: str, code: int | None, reason: str) -> int:
     """One line for standard output that cannot be written: exit 1 (141, SIGPIPE's, for a closed pipe)."""
-    with contextlib.suppress(OSError):
+    with contextlib.suppress(OSError, ValueError):
         click.echo(f"{where}: error: cannot write to standard output: {reason}", err=True)
     return 141 if code == errno.EPIPE else 1
 

@@ -7,7 +7,7 @@ import sys
 import click
 
 from ..core import inputs
-from ..core.errors import InputError
+from ..core.errors import InputError, printable
 from ._common import (
     DURATION_LIST,
     FIGURE,
@@ -90,7 +90,7 @@ def approximations(plot, as_json):
     for f in table.formulas:
         click.echo(f"{f.name}: {f.formula}  [{f.source}]")
     if plot:
-        click.echo(f"wrote {plot}")
+        click.echo(f"wrote {printable(plot)}")
 
 
 @click.command()
@@ -139,4 +139,4 @@ def sweep(amplitudes, steps, methods, length, output, plot, scheduler, g, as_jso
                    f"{r['max_abs_cubic_error']:>18.3e} {r['max_rel_cubic_error']:>10.3e} {r['pendulum_steps']:>12}")
     for path in (output, plot):
         if path:
-            click.echo(f"wrote {path}")
+            click.echo(f"wrote {printable(path)}")

@@ -57,8 +57,10 @@ def key(groups_file: str, output: str | None, as_json: bool) -> None:
         from ..report.key import write_key
 
         write_key(k, output)
-        also = f" and {answer.class_path(output)}" if fmt == "csv" else ""
-        click.echo(f"pendulab: wrote {output}{also} ({len(groups)} groups)", err=True)
+        from ..core.errors import printable
+
+        also = f" and {printable(answer.class_path(output))}" if fmt == "csv" else ""
+        click.echo(f"pendulab: wrote {printable(output)}{also} ({len(groups)} groups)", err=True)
     if as_json:
         from ..report.key import document
 

@@ -7,6 +7,7 @@ import click
 
 from ..core import inputs
 from ..core.cases import EXAMPLE_GROUP
+from ..core.errors import printable
 from ._common import Parsed, choice, emit_json, json_option, output
 
 #: The example group as the option writes it: ``262,407,634``.
@@ -81,7 +82,7 @@ def report(more: tuple[str, ...], students: str, lang: str, output: str, names: 
         gc.unfreeze()
         if was:
             gc.enable()
-    click.echo(f"pendulab: wrote {output}", err=True)
+    click.echo(f"pendulab: wrote {printable(output)}", err=True)
     if as_json:  # the file written, and the answers: the key's document for this one group
         from ..jobs.key import Entry, answer_key
         from ..report.key import document

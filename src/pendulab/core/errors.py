@@ -68,6 +68,13 @@ def shown(text: object) -> str:
     return s if s and s.isprintable() and s == s.strip() else repr(s)
 
 
+def printable(text: object) -> str:
+    """``text`` whole, each control character (a terminal escape in a path) written as its
+    escape (``\\x1b``): what a line on a terminal may print of a name."""
+    return "".join(c if c.isprintable() or c == " " else c.encode("unicode_escape").decode("ascii")
+                   for c in str(text))
+
+
 class NumericalError(PendulabError):
     """A computation that cannot give the asked-for result (no sign change, no convergence)."""
 

@@ -1,10 +1,10 @@
-"""Ctrl+C and SIGTERM around compiled kernels: recorded while a kernel runs, raised after it.
+"""Ctrl+C, SIGTERM, SIGHUP and SIGQUIT around compiled kernels: recorded while a kernel runs, raised after it.
 
 Python runs a signal's handler in the main thread at the next point where the interpreter
 checks for one, and numba's conversion of a kernel's result to Python objects is such a
 point: a ``KeyboardInterrupt`` raised there leaves the result half built (a
 ``SystemError``, or a crash). :func:`deferred` replaces the handlers of SIGINT and SIGTERM
-by one that only records the signal, the drivers run their kernels in chunks and look at
+(and of SIGHUP, SIGQUIT) by one that only records the signal, the drivers run their kernels in chunks and look at
 the record between them (:func:`run_pieces`), and on leaving the original handlers are
 put back and the signal is delivered again, in plain Python code.
 
@@ -15,7 +15,7 @@ while LLVM worked is handled in that callback, where a ``KeyboardInterrupt`` is 
 in the main thread is made inside :func:`deferred` (:func:`run_pieces` for the long runs),
 its compilation included.
 
-:class:`Terminated` is what the CLI's SIGTERM handler raises (:func:`terminate_handler`):
+:class:`Terminated` is what the CLI's SIGTERM, SIGHUP and SIGQUIT handler raises (:func:`terminate_handler`):
 like Ctrl+C it unwinds, so ``finally`` blocks and temporary folders are cleaned up.
 
 A thread that serves someone else (the web explorer's worker) stops its work the same way
@@ -29,16 +29,65 @@ import signal
 import threading
 from collections.abc import Callable, Iterable, Iterator
 
-_SIGNALS = (signal.SIGINT, signal.SIGTERM)
+#: The signals that end a command: Ctrl+C, ``kill``, a closed terminal (SIGHUP), Ctrl+\\ (SIGQUIT).
+ENDING = tuple(getattr(signal, n) for n in ("SIGINT", "SIGTERM", "SIGHUP", "SIGQUIT") if hasattr(signal, n))
+_SIGNALS = ENDING
+
+#: The signals received by :func:`terminate_handler` and :func:`interrupt_handler`, first
+#: first. A ``KeyboardInterrupt`` raised where some code swallows it (a callback, an
+#: ``except BaseException``) is not forgotten: :func:`check_signals` raises it again at the
+#: next commit point (an output's rename), and the command's status still tells it.
+received: list[int] = []
 
 
 class Terminated(KeyboardInterrupt):
-    """SIGTERM, raised like Ctrl+C's ``KeyboardInterrupt`` so that the same cleanup runs."""
+    """SIGTERM, SIGHUP or SIGQUIT, raised like Ctrl+C's ``KeyboardInterrupt`` so that the same
+    cleanup runs; ``signum`` is the signal."""
+
+    def __init__(self, signum: int = signal.SIGTERM):
+        super().__init__(signum)
+        self.signum = int(signum)
+
+
+def signal_of(exc: BaseException) -> int:
+    """The signal a ``KeyboardInterrupt`` stands for (SIGINT unless it is a :class:`Terminated`)."""
+    return exc.signum if isinstance(exc, Terminated) else int(signal.SIGINT)
+
+
+def word(signum: int) -> str:
+    """How a command a signal ended says so: ``interrupted`` (Ctrl+C), ``terminated``,
+    ``hung up`` (the terminal closed), ``quit`` (Ctrl+\\)."""
+    return {signal.SIGINT: "interrupted", getattr(signal, "SIGHUP", -1): "hung up",
+            getattr(signal, "SIGQUIT", -1): "quit"}.get(signum, "terminated")
 
 
 def terminate_handler(signum: int, frame: object) -> None:
-    """A SIGTERM handler that raises :class:`Terminated` (installed by the CLI)."""
-    raise Terminated()
+    """A handler of SIGTERM, SIGHUP and SIGQUIT that raises :class:`Terminated` (installed by the CLI)."""
+    received.append(int(signum))
+    raise Terminated(signum)
+
+
+def interrupt_handler(signum: int, frame: object) -> None:
+    """Ctrl+C's handler in the CLI: Python's ``KeyboardInterrupt``, and the signal recorded."""
+    received.append(int(signum))
+    raise KeyboardInterrupt
+
+
+def install() -> None:
+    """The CLI's handlers of every ending signal (main thread only); an ignored signal
+    (``nohup``'s SIGHUP) stays ignored."""
+    for s in ENDING:
+        if signal.getsignal(s) is signal.SIG_IGN:
+            continue
+        signal.signal(s, interrupt_handler if s == signal.SIGINT else terminate_handler)
+
+
+def check_signals() -> None:
+    """Raise again a signal that was received and swallowed by some code on the way: called
+    before an output is committed, so that no output is replaced after a signal."""
+    if received:
+        signum = received[0]
+        raise KeyboardInterrupt if signum == signal.SIGINT else Terminated(signum)
 
 
 @contextlib.contextmanager
@@ -62,7 +111,8 @@ def deferred() -> Iterator[list[int]]:
     old = {}
     try:
         for s in _SIGNALS:
-            if signal.getsignal(s) in (signal.default_int_handler, terminate_handler, signal.SIG_DFL):
+            if signal.getsignal(s) in (signal.default_int_handler, terminate_handler, interrupt_handler,
+                                       signal.SIG_DFL):
                 old[s] = signal.signal(s, record)  # only handlers that end the work: an ignored
         yield got  # signal, or a handler of the program's own, is left as it is
     finally:
