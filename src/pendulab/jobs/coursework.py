@@ -69,8 +69,9 @@ def source(name: str, lang: str = "en") -> str:
 
 
 def write(folder: str | os.PathLike, lang: str = "en") -> list[Path]:
-    """Write every program into ``folder`` (created if missing), each file atomically."""
-    from ..core.atomic import write_text
+    """Write every program into ``folder`` (created if missing), the files as one
+    (:func:`pendulab.core.atomic.write_together`): all new, or all as they were."""
+    from ..core.atomic import write_together
     from ..core.inputs import path_text, shown
 
     if lang not in LANGUAGES:
@@ -82,9 +83,8 @@ def write(folder: str | os.PathLike, lang: str = "en") -> list[Path]:
         if out.exists() and not out.is_dir():
             raise InputError("output", shown(str(folder)), allowed + "; this is a file")
         out.mkdir(exist_ok=True)  # one level, as mkdir does: a mistyped path is refused, not built
-        for name in PROGRAMS:
-            write_text(out / name, source(name, lang))
-            paths.append(out / name)
+        paths = [out / name for name in PROGRAMS]
+        write_together([(p, source(p.name, lang).encode("utf-8")) for p in paths])
     except OSError as exc:  # not writable, a name too long, and the like
         raise InputError("output", shown(str(folder)), f"{allowed} ({exc.strerror})") from None
     return paths

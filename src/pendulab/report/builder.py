@@ -12,7 +12,6 @@ from __future__ import annotations
 
 import os
 import sys
-import tempfile
 from collections.abc import Sequence
 from pathlib import Path
 from typing import Any
@@ -137,7 +136,7 @@ def build_report(
     Path
         ``output``.
     """
-    from ..core.atomic import check_writable, write_bytes
+    from ..core.atomic import check_writable, temp_folder, write_bytes
     from ..numerics.group import group_length
 
     check_lang(lang)
@@ -149,7 +148,7 @@ def build_report(
 
         names = parse_names("names", ";".join(names), len(students))
     steps = sections.SECTIONS
-    with tempfile.TemporaryDirectory(prefix="pendulab-report-") as tmp, _progress(progress) as bar:
+    with temp_folder("pendulab-report-") as tmp, _progress(progress) as bar:
         task = bar.add_task("starting", total=len(steps) + 1)
         doc = new_doc(students, lang, Path(tmp))
         for label, section in steps:
