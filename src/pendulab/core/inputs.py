@@ -408,11 +408,13 @@ MAX_NAME = 80
 
 def names(name: str, text: object, count: int) -> tuple[str, ...]:
     """Student names separated by ``;``, one per student number (``count`` of them), in the
-    order of the numbers: ``"Ana Sá; João Simões; 李明"``. Any printable Unicode; each
-    name is stripped and has 1 to :data:`MAX_NAME` characters.
+    order of the numbers: ``"Ana Sá; João Simões; 李明"``. Any printable Unicode, and the
+    zero-width joiner and non-joiner that Persian and Indic names need; each name is
+    stripped and has 1 to :data:`MAX_NAME` characters, with at most :data:`MAX_MARKS`
+    combining marks on one letter (a stack taller than a line would cross the page's lines).
     """
     allowed = (f"{count} name{'s' if count != 1 else ''} separated by ';', one per student number, "
-               f"each of 1 to {MAX_NAME} printable characters")
+               f"each of 1 to {MAX_NAME} printable characters, at most {MAX_MARKS} accents on a letter")
     if text is None:
         raise InputError(name, "(missing)", allowed)
     s = str(text)
@@ -422,9 +424,29 @@ def names(name: str, text: object, count: int) -> tuple[str, ...]:
     if len(parts) != count:
         raise InputError(name, shown(s.strip()), f"{allowed} ({len(parts)} given)")
     for p in parts:
-        if not p or len(p) > MAX_NAME or not p.isprintable():
+        if not p or len(p) > MAX_NAME or not _name_text(p):
             raise InputError(name, shown(p), allowed)
     return parts
+
+
+#: The most combining marks on one letter of a name (Vietnamese stacks two, some Indic scripts three or four).
+MAX_MARKS = 4
+#: Zero-width joiner and non-joiner: not "printable" to Python, a letter's shape in Persian, Arabic, Indic names.
+_JOINERS = frozenset("\u200c\u200d")
+
+
+def _name_text(text: str) -> bool:
+    """Printable characters and joiners, no letter with more than :data:`MAX_MARKS` combining marks."""
+    import unicodedata
+
+    run = 0
+    for c in text:
+        if not (c.isprintable() or c in _JOINERS):
+            return False
+        run = run + 1 if unicodedata.combining(c) else 0
+        if run > MAX_MARKS:
+            return False
+    return True
 
 
 # --------------------------------------------------------------------------- names, paths

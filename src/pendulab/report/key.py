@@ -9,11 +9,11 @@ import csv
 import io
 import json
 import os
-import tempfile
+import re
 from pathlib import Path
 from typing import Any
 
-from ..core.atomic import check_writable, write_bytes, write_together
+from ..core.atomic import check_writable, temp_folder, write_bytes, write_together
 from ..core.errors import InputError
 from ..jobs.key import FORMATS, REASON_VALUES, TOLERANCES, AnswerKey, Tolerance, class_path, output_format
 from .markup import fixed, num, sci
@@ -58,14 +58,31 @@ def repeated_cell(g: dict[str, Any], lang: str = "en") -> str | None:
 
 
 def _cell(x: Any) -> Any:
-    """A CSV cell: floats by their shortest round-trip repr, booleans as yes/no, None empty."""
+    """A CSV cell: floats by their shortest round-trip repr, booleans as yes/no, None empty,
+    a text a spreadsheet would run as a formula made plain (:func:`plain_cell`)."""
     if x is None:
         return ""
     if isinstance(x, bool):
         return "yes" if x else "no"
     if isinstance(x, float):
         return repr(x)
+    if isinstance(x, str):
+        return plain_cell(x)
     return x
+
+
+#: The first characters that make a spreadsheet read a cell as a formula (OWASP, CSV Injection).
+FORMULA_STARTS = ("=", "+", "-", "@", "\t", "\r")
+_NUMBER = re.compile(r"[+-]?(\d+\.?\d*|\.\d+)([eE][+-]?\d+)?")
+
+
+def plain_cell(text: str) -> str:
+    """``text`` as a spreadsheet shows it and never runs it: a text that begins with ``=``,
+    ``+``, ``-``, ``@``, a tab or a carriage return gets a leading ``'`` (OWASP's advice for
+    CSV injection); a number (``-0.5``) is left as it is."""
+    if text.startswith(FORMULA_STARTS) and not _NUMBER.fullmatch(text):
+        return "'" + text
+    return text
 
 
 def _tag(h: float) -> str:
@@ -242,7 +259,7 @@ def _pdf(key: AnswerKey) -> bytes:
     steps = [sci(e["step"], 1) for e in key.groups[0]["estimates"]]
     data = {"rows": rows, "names": names, "steps": steps, "count": len(rows), "blocks": class_blocks(key),
             "duplicates": sum(g["duplicate_of"] is not None for g in key.groups)}
-    with tempfile.TemporaryDirectory(prefix="pendulab-key-") as tmp:
+    with temp_folder("pendulab-key-") as tmp:
         return typeset(Path(tmp), "key.typ", data, system_fonts=needs_system_fonts(names))
 
 
