@@ -37,6 +37,7 @@ COMMANDS = {
     "report": "report:report",
     "programs": "programs:programs",
     "key": "key:key",
+    "mark": "key:mark",
     "serve": "serve:serve",
     "approximations": "beyond:approximations",
     "sweep": "beyond:sweep",
@@ -48,7 +49,7 @@ SECTIONS = {
     "Coursework": ("period", "simulate", "estimate", "length", "gravity", "newton", "fit", "quadrature",
                    "programs"),
     "Beyond the coursework": ("approximations", "sweep"),
-    "Tools": ("report", "key", "serve"),
+    "Tools": ("report", "key", "mark", "serve"),
 }
 
 EXAMPLES = """\b

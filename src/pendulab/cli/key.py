@@ -4,7 +4,7 @@ from __future__ import annotations
 import click
 
 from ..core import inputs
-from ._common import Parsed, output
+from ._common import Parsed, choice, output
 
 
 @click.command()
@@ -17,7 +17,13 @@ from ._common import Parsed, output
               help="Write the key to this file: .csv (one row per group; the class-wide answers and "
                    "the marking tolerances go to NAME-class.csv beside it), .json or .pdf (atomically).")
 @click.option("--json", "as_json", is_flag=True, help="Print the key as one JSON document on stdout.")
-def key(groups_file: str, output: str | None, as_json: bool) -> None:
+@click.option("--template", type=choice("answers", "scheme"), is_flag=False, flag_value="answers", default=None,
+              help="Instead of the key: the answers file to fill in for pendulab mark (a CSV, one row per group "
+                   "of --groups, one column per question), or with 'scheme' the default marking scheme (JSON: "
+                   "points and the fewest significant digits per question), on stdout or to --output.")
+@click.option("--csv-dialect", "dialect", type=choice("excel", "excel-pt"), default="excel", show_default=True,
+              help="The template's CSV: excel (',') or excel-pt (';' and a byte order mark).")
+def key(groups_file: str, output: str | None, as_json: bool, template: str | None, dialect: str) -> None:
     """The answers of every group (problem 3) and the common answers (problems 1, 2, 4, 5) once."""
     from ..core.atomic import check_not_input, check_writable
     from ..jobs import key as answer
@@ -25,6 +31,9 @@ def key(groups_file: str, output: str | None, as_json: bool) -> None:
 
     # Every input checked before the work: the whole file, the output path and format.
     groups = answer.read_entries(groups_file)
+    if template is not None:
+        _template(groups, template, output, dialect, groups_file)
+        return
     if output is not None:
         fmt = answer.output_format(output)
         check_writable("output", output)
@@ -81,3 +90,79 @@ def _table(k) -> None:
                  else f"leaves at {p['left_at']:.4g}" if p["outcome"] == "leaves" else "no return")
         click.echo(f"{' '.join(map(str, g['students'])):<28} {g['length_text']:>13} {g['t_hat']:>18.15g} "
                    f"{shown:>18} " + " ".join(f"{e['cubic']:>18.15g}" for e in g["estimates"]))
+
+
+def _template(groups, template: str, output: str | None, dialect: str, groups_file: str) -> None:
+    """``key --template``: the answers file or the marking scheme, written or printed."""
+    import sys
+
+    from ..jobs import mark as marking
+    from ..report.mark import scheme_json, template_csv
+
+    data = (template_csv(marking.template_rows(groups), dialect) if template == "answers"  # type: ignore[arg-type]
+            else scheme_json(marking.default_scheme()))
+    if output is None:
+        sys.stdout.buffer.write(data)
+        sys.stdout.flush()
+        return
+    from ..core.atomic import check_not_input, write_bytes
+
+    if groups_file != "-":
+        check_not_input("output", output, "groups", groups_file)
+    write_bytes(output, data)
+    click.echo(f"pendulab: wrote {output}", err=True)
+
+
+@click.command()
+@click.option("--groups", "groups_file", required=True, type=Parsed(lambda s: inputs.path_text("groups", s), "file"),
+              help="The class's groups file, as for pendulab key (a header row, ';' or ',' or spaces, names).")
+@click.option("--answers", "answers_file", required=True,
+              type=Parsed(lambda s: inputs.path_text("answers", s), "file"),
+              help="The groups' answers: a CSV with the columns of pendulab key --template, one row per group "
+                   "(',' or ';' between cells; decimal commas with ';').")
+@click.option("--scheme", "scheme_file", default=None, type=Parsed(lambda s: inputs.path_text("scheme", s), "file"),
+              help="A marking scheme (JSON, pendulab key --template scheme); default one point per question.")
+@click.option("--output", "-o", default=None, type=output(".csv", ".json", ".txt", ".pdf"),
+              help="Write the marked sheet: .csv (one row per group and question), .json, .txt or .pdf "
+                   "(with the class summary and a histogram of marks), atomically.")
+@click.option("--json", "as_json", is_flag=True,
+              help="Print one JSON document: per group its points, max_points and each answer's verdict.")
+@click.option("--csv-dialect", "dialect", type=choice("excel", "excel-pt"), default="excel", show_default=True,
+              help="The sheet's CSV: excel (',' and a decimal point) or excel-pt (';', a decimal comma "
+                   "and a byte order mark, for a spreadsheet in a Portuguese locale).")
+@click.option("--lang", type=choice("en", "pt"), default="en", show_default=True,
+              help="The language of the verdicts and reasons.")
+def mark(groups_file: str, answers_file: str, scheme_file: str | None, output: str | None, as_json: bool,
+         dialect: str, lang: str) -> None:
+    """Mark the class's answers against the key: each answer right or wrong, and why."""
+    from ..core.atomic import check_not_input
+    from ..jobs import key as answer
+    from ..jobs import mark as marking
+    from ..report import mark as sheet
+    from ._common import emit_json
+
+    groups = answer.read_entries(groups_file)
+    rows = marking.read_answers(answers_file)
+    scheme = None if scheme_file is None else marking.read_scheme(scheme_file)
+    if output is not None:
+        fmt = sheet.output_format(output)
+        for name, path in (("groups", groups_file), ("answers", answers_file), ("scheme", scheme_file)):
+            if path is not None and path != "-":
+                check_not_input("output", output, name, path)
+        if fmt == "pdf":
+            from ..core.extras import require
+
+            require("typst", "pendulab mark --output FILE.pdf")
+    from ..report.key import repeated_words
+
+    for r in answer.repeated_students(groups):
+        for words in repeated_words(r.to_dict(), lang):
+            click.echo(f"pendulab: warning: {words}", err=True)
+    marks = marking.mark_class(groups, rows, scheme, answers_file)
+    if output is not None:
+        sheet.write_marks(marks, output, lang, dialect)  # type: ignore[arg-type]
+        click.echo(f"pendulab: wrote {output} ({len(marks.groups)} groups)", err=True)
+    if as_json:
+        emit_json(sheet.document(marks, lang))
+    elif output is None:
+        click.echo(sheet.text(marks, lang), nl=False)
