@@ -323,3 +323,16 @@ def test_bad_option_is_one_line(tmp_path, capsys):
     assert main(["mark", "--groups", str(groups), "--answers", str(tmp_path / "none.csv")]) == 2
     err = capsys.readouterr().err.strip().splitlines()
     assert len(err) == 1 and "answers" in err[0]
+
+
+@pytest.mark.parametrize("students", [(262, 407, 634), (11111,), (98765, 43210)])
+def test_engine_lists_are_the_programs(students):
+    """mark takes problem 3's Taylor lists from the engine: the program's doubles, bit for bit."""
+    from pendulab.numerics.simulation import simulate
+
+    length = float(LENGTH(list(students))[2])
+    exact = AGM(length, P3.ALPHA)
+    for h in (1e-2, 1e-3, 1e-4):
+        t, z1, z2 = TAYLOR(length, P3.ALPHA, h, 1.5 * exact + 8 * h)
+        run = simulate(length, P3.ALPHA, h, 1.5 * exact + 8 * h)
+        assert run.t.tolist() == t and run.theta.tolist() == z1 and run.omega.tolist() == z2
