@@ -647,6 +647,21 @@ def test_flags_say_what_is_wrong_and_spare_a_bounded_oscillation(browser, server
         context.close()
 
 
+@pytest.mark.slow
+def test_rk4_at_half_a_second_is_flagged_as_damping_at_every_size(browser, server):
+    # RK4 at l = 1 m, 30 deg, h = 0.5 s loses its energy to a standstill: named numerical damping, never "bounded".
+    for width, height in VIEWPORTS:
+        context, pg = open_page(browser, server, "/?length=1&amplitude=30&unit=deg&step=0.5&t_max=20&method=rk4",
+                                width, height)
+        try:
+            pg.wait_for_function("document.querySelector('#flags p[data-kind=energy-decay]')", timeout=30_000)
+            text = pg.locator("#flags").text_content()
+            assert "numerical damping" in text and "bounded" not in text.lower()
+            assert pg.locator(".estimates.untrusted").count() == 1
+        finally:
+            context.close()
+
+
 def test_second_method_in_every_plot_and_a_log_error(browser, server):
     context, pg = open_page(browser, server, "/?length=1&amplitude=30&unit=deg&step=1e-2&t_max=20&method2=verlet&errlog=1")
     try:

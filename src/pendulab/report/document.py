@@ -68,8 +68,8 @@ class Doc:
         """Every catalogue entry with its ``{placeholders}`` filled (alternatives: the chosen one)."""
         out = {}
         for key in self.catalogue:
-            if key.startswith("text."):
-                continue  # plain text for other presenters (pendulab.report.words), not Typst
+            if key.startswith(("text.", "web.")):
+                continue  # plain text for other presenters (pendulab.report.words, the explorer), not Typst
             parent = key.rsplit(".", 1)[0]
             if parent in self.choices and self.choices[parent] != key:
                 continue  # an alternative not taken: its numbers may not exist

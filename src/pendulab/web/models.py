@@ -141,11 +141,13 @@ class Frames(_Model):
 
 
 class Note(_Model):
-    kind: Literal["blow-up", "over-the-top", "energy-drift", "energy-oscillation", "phase"]
+    kind: Literal["blow-up", "over-the-top", "energy-growth", "energy-decay", "energy-drift",
+                  "energy-oscillation", "energy-oscillation-large", "phase"] = Field(
+        description="a finding of pendulab.numerics.diagnosis (its thresholds in docs/explorer.md)")
     severity: Literal["wrong", "warn", "note"] = Field(
         description="wrong: not the pendulum's motion; warn: out of step with the exact motion; "
-                    "note: a bounded energy error, the swing still a pendulum's")
-    text: str
+                    "note: a small bounded energy error")
+    text: str = Field(description="the finding in words, in the language asked for (lang)")
 
 
 class Flags(_Model):
@@ -153,8 +155,9 @@ class Flags(_Model):
     nonfinite_t: float | None
     energy_drift_max: float | None
     energy_drift_relative: float | None
-    energy_drift_kind: Literal["secular", "bounded"] | None = Field(
-        description="whether |E - E0| grows over the run or stays bounded (null: a run too short to tell, or over the top)")
+    energy_drift_kind: Literal["growth", "decay", "bounded"] | None = Field(
+        description="growth, decay (numerical damping) or a bounded error, from the data "
+                    "(null: a run too short to tell, or over the top or blown up)")
     phase_error_max: float | None = Field(description="max |theta_sim - theta_exact| over the error samples, rad")
     trustworthy: bool
     warnings: list[str] = Field(description="the texts of the notes of severity wrong or warn")

@@ -23,7 +23,7 @@ from ..core import validate as v
 from ..core.cases import PROBLEM5, G
 from ..core.errors import InputError
 from ..core.methods import Status, resolve
-from . import limits, models, parameters, sampling
+from . import limits, models, parameters, sampling, words
 from .sampling import finite_list
 
 if TYPE_CHECKING:
@@ -32,10 +32,6 @@ if TYPE_CHECKING:
 __all__ = ["config_view", "convergence_view", "motion_view", "period_curve_view", "period_endpoint",
            "simulate_view", "trajectory_csv", "warm"]
 
-#: An energy drift above this fraction of the swing's energy is flagged.
-ENERGY_WARN = 0.01
-#: A simulation further than this from the exact motion (rad, about 6 deg) is flagged.
-PHASE_WARN = 0.1
 #: Rows computed per block of the streamed CSV.
 CSV_BLOCK = 8192
 #: Points of the exact orbit drawn in the phase portrait (one period).
@@ -132,83 +128,46 @@ def exact_state(p: Mapping[str, Any], t: np.ndarray) -> tuple[np.ndarray, np.nda
 
 
 def _energy0(p: Mapping[str, Any]) -> float:
-    """The release's energy above the bottom, ``E0/(m g l) = 1 - cos(alpha) + omega0^2 l/(2g)``."""
-    return 1.0 - math.cos(p["amplitude"]) + p.get("omega0", 0.0) * p.get("omega0", 0.0) * p["length"] / (2 * p["g"])
+    """The release's energy above the bottom, ``E0/(m g l)``, by :func:`pendulab.numerics.motion.energy`."""
+    from ..numerics.motion import energy
 
-
-def _drift_kind(sim: Mapping[str, Any], h: float, t_end: float) -> str | None:
-    """``"secular"`` when the energy error grows over the run, ``"bounded"`` when it does not.
-
-    Compares the largest ``|E - E0|`` in the run's first and last windows of ``max(T, t_end/4)``:
-    a symplectic method (Verlet) keeps a bounded oscillation, the same in both; a method whose
-    error accumulates (Euler, Taylor, RK4) has more in the last. None for a run shorter than
-    two windows, where the two cannot be told apart.
-    """
-    window = max(sim["period"], t_end / 4)
-    if not 2 * window <= t_end or not len(sim["energy"]):
-        return None
-    t = h * np.asarray(sim["energy_idx"], dtype=float)
-    e = np.abs(np.asarray(sim["energy"], dtype=float))
-    early, late = e[t <= window], e[t >= t_end - window]
-    if not (len(early) and len(late)) or not (np.all(np.isfinite(early)) and np.all(np.isfinite(late))):
-        return None
-    return "secular" if np.max(late) > 1.5 * np.max(early) else "bounded"
+    e = energy(np.array([p["amplitude"], 0.0]), np.array([p.get("omega0", 0.0), 0.0]), p["length"], p["g"])
+    return float(e[0] - e[1]) * p["length"] / p["g"]
 
 
 def _flags(p: Mapping[str, Any], sim: Mapping[str, Any], err_t: np.ndarray | None = None,
-           err: np.ndarray | None = None) -> dict[str, Any]:
-    """What makes a simulation untrustworthy, as facts with their times, and one line each.
+           err: np.ndarray | None = None, lang: str = "en") -> dict[str, Any]:
+    """The diagnosis of the run (:func:`pendulab.numerics.diagnosis.diagnose`), each finding in words.
 
     ``notes``: every finding as ``{"kind", "severity", "text"}``; severity ``"wrong"`` (not
-    the pendulum's motion: blow-up, over the top, energy drift), ``"warn"`` (out of step with
-    the exact motion by more than :data:`PHASE_WARN`) or ``"note"`` (a bounded energy
-    oscillation: the motion stays a pendulum's). ``warnings``: the texts of the first two kinds.
+    the pendulum's motion), ``"warn"`` (out of step with the exact motion) or ``"note"`` (a
+    small bounded energy error). ``warnings``: the texts of the first two kinds.
     """
+    from ..numerics.diagnosis import PHASE_WARN, diagnose
+
     h = p["step"]
-    swing = _energy0(p)  # the swing's energy, E0 - E(0), in m g l
     goes_round = bool(p.get("omega0", 0.0)) and sim.get("circulates", False)
     left = sim["left"] * h if sim["left"] >= 0 and not goes_round else None  # over the top, as the exact motion does
     bad = sim["bad"] * h if sim["bad"] >= 0 else None
-    drift = sim["energy_max"]
-    rel = drift / swing if swing > 0 and math.isfinite(drift) else None
-    # Once over the top (or blown up) the energy error says nothing more: no kind.
-    kind = _drift_kind(sim, h, sim["n"] * h) if rel is not None and bad is None and left is None else None
-    notes: list[dict[str, str]] = []
-    if bad is not None:
-        notes.append({"kind": "blow-up", "severity": "wrong", "text":
-                      f"the simulation blew up: theta or theta' is no longer a finite number from t = {bad:.6g} s"})
-    if left is not None:
-        notes.append({"kind": "over-the-top", "severity": "wrong", "text": (
-            f"the simulated pendulum went over the top (|theta| >= 180 deg) at t = {left:.6g} s, which the real one "
-            + ("released at rest below 180 deg" if not p.get("omega0", 0.0) else "launched with too little energy to reach the top")
-            + f" never does: step h = {h:g} s is too large for this method")})
-    if rel is not None and rel > ENERGY_WARN and bad is None:
-        if kind == "bounded":
-            notes.append({"kind": "energy-oscillation", "severity": "note", "text": (
-                f"the energy oscillates by up to {100 * rel:.3g} % of the swing's energy E0 "
-                "and does not grow: a bounded error (as a symplectic method's), the swing stays a pendulum's")})
-        else:
-            notes.append({"kind": "energy-drift", "severity": "wrong", "text": (
-                f"the energy drifted by up to {100 * rel:.3g} % of the swing's energy E0"
-                + (", and keeps growing" if kind == "secular" else "")
-                + ": the simulated motion is not the pendulum's; use a smaller step or another method")})
-    phase = None
-    if err is not None and err_t is not None and len(err):
-        ok = np.isfinite(err)
-        phase = float(np.max(np.abs(err[ok]))) if ok.any() else None
-        if phase is not None and phase > PHASE_WARN and bad is None and left is None:
-            first = float(err_t[int(np.argmax(np.abs(np.where(ok, err, 0.0)) > PHASE_WARN))])
-            notes.append({"kind": "phase", "severity": "warn", "text": (
-                f"the simulation falls out of step with the exact motion: {phase:.3g} rad ({math.degrees(phase):.3g} deg) "
-                f"apart at most, more than {PHASE_WARN:g} rad from t = {first:.6g} s on")})
+    d = diagnose(_energy0(p), h * np.asarray(sim["energy_idx"], dtype=float), sim["energy"], sim["period"],
+                 sim["n"] * h, left, bad, err_t, err)
+    num = functools.partial(words.number, lang=lang)
+    notes = []
+    for f in d.notes:
+        key = f.kind + ((".launched" if p.get("omega0", 0.0) else ".rest") if f.kind == "over-the-top" else "")
+        text = words.say(f"flag.{key}", lang, t=num(f.t, ".6g") if f.t is not None else "", h=num(h, "g"),
+                         percent=num(100 * f.value, ".3g") if f.value is not None else "",
+                         rad=num(f.value, ".3g") if f.value is not None else "",
+                         deg=num(math.degrees(f.value), ".3g") if f.value is not None else "",
+                         limit=num(PHASE_WARN, "g"))
+        notes.append({"kind": f.kind, "severity": f.severity, "text": text})
+    out = d.to_dict()
     warnings = [n["text"] for n in notes if n["severity"] != "note"]
     return {
         "left_oscillation_t": left, "nonfinite_t": bad,
-        "energy_drift_max": _num(drift) if drift == drift else None,
-        "energy_drift_relative": _num(rel) if rel is not None else None,
-        "energy_drift_kind": kind,
-        "phase_error_max": phase,
-        "trustworthy": not warnings, "warnings": warnings, "notes": notes,
+        "energy_drift_max": out["energy_drift_max"], "energy_drift_relative": out["energy_drift_relative"],
+        "energy_drift_kind": out["energy_drift_kind"], "phase_error_max": out["phase_error_max"],
+        "trustworthy": out["trustworthy"], "warnings": warnings, "notes": notes,
     }
 
 
@@ -281,7 +240,7 @@ def simulate_view(params: Mapping[str, str]) -> dict[str, Any]:
         "exact_frames": {"theta": finite_list(ex_frames[0]), "omega": finite_list(ex_frames[1])},
         "exact_phase": {"theta": finite_list(orbit[0]), "omega": finite_list(orbit[1])},
         "launch": launched,
-        "flags": _flags(p, sim, e_t, err),
+        "flags": _flags(p, sim, e_t, err, words.language(params)),
         "period": period_view(p["length"], p["amplitude"], p["g"]) | est
         | ({"period": launched["period"]} if launched else {}),
     }
