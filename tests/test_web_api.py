@@ -648,3 +648,27 @@ def test_a_launch_is_simulated_and_flagged_against_its_own_exact_motion(client):
     assert "too little energy" in body["flags"]["warnings"][0]
     r = client.get("/api/simulate", params=q | {"omega0": "inf"})
     assert r.status_code == 422 and r.json()["error"]["field"] == "omega0"
+
+
+def test_one_period_per_request(monkeypatch):
+    # The AGM period (mpmath) and the period as written (Arb) are computed once per simulation and passed down.
+    from pendulab.numerics import crossing, period
+
+    calls = {"agm": 0, "double": 0}
+    agm, double = period.agm_period, period.period_double
+
+    def counted_agm(*a, **k):
+        calls["agm"] += 1
+        return agm(*a, **k)
+
+    def counted_double(*a, **k):
+        calls["double"] += 1
+        return double(*a, **k)
+
+    monkeypatch.setattr(period, "agm_period", counted_agm)
+    monkeypatch.setattr(crossing, "agm_period", counted_agm)
+    monkeypatch.setattr(period, "period_double", counted_double)
+    body = views.simulate_view(P5_QUERY)
+    assert calls == {"agm": 1, "double": 1}
+    assert body["period"]["period"] == pytest.approx(ellipk_period(3.5, 0.8 * math.pi), rel=1e-14)
+    assert body["period"]["estimate"]["period"] == body["period"]["period"]

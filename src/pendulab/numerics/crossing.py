@@ -178,11 +178,14 @@ def search_period(
     t0: float = 0.0,
     g: float = G,
     method: str = "taylor2",
+    period: float | None = None,
 ) -> PeriodSearch:
     """The period from the simulation (3) by sign change and interpolation, failure as a status.
 
-    Parameters as :func:`estimate_period`; bad input raises :class:`InputError`, and an
-    outcome without a period (no return, over the top) is :attr:`PeriodSearch.status`.
+    Parameters as :func:`estimate_period`, and ``period``: the AGM period of these inputs
+    where the caller has it (``agm_period(length, amplitude, g)``; not recomputed). Bad
+    input raises :class:`InputError`, and an outcome without a period (no return, over the
+    top) is :attr:`PeriodSearch.status`.
     """
     length = v.positive("length", length)
     alpha = v.amplitude("amplitude", amplitude)
@@ -191,7 +194,7 @@ def search_period(
     t0 = v.finite("t0", t0)
     if alpha == 0:
         raise InputError("amplitude", amplitude, "> 0 for a period from a simulation (at rest nothing moves)")
-    period = agm_period(length, alpha, g)
+    period = agm_period(length, alpha, g) if period is None else period
     if t_max is None:
         t_max = default_t_max(period, step, t0)
     t0, t_max, step = v.time_span(t0, t_max, step)

@@ -124,7 +124,7 @@ def gapped(values: np.ndarray, idx: np.ndarray, stride: int) -> list:
     return out
 
 
-def simulate_arrays(p: Mapping[str, Any], points: int) -> dict[str, Any]:
+def simulate_arrays(p: Mapping[str, Any], points: int, period: float | None = None) -> dict[str, Any]:
     """One streamed pass over the simulation: what the page draws, in O(points) memory.
 
     ``theta(t)``: the min and max of ``theta`` in each of ``points // 2`` columns of steps
@@ -132,6 +132,7 @@ def simulate_arrays(p: Mapping[str, Any], points: int) -> dict[str, Any]:
     and animation samples; the first step that left the oscillation or went non-finite.
     The steps run in pieces (:func:`pendulab.core.interrupt.run_pieces`): inside
     :func:`pendulab.core.interrupt.stop_when`, a set event stops the pass between two pieces.
+    ``period``: the AGM period of a release at rest where the caller has it.
     """
     from ..engine import fold
     from ..numerics.period import agm_period
@@ -147,7 +148,7 @@ def simulate_arrays(p: Mapping[str, Any], points: int) -> dict[str, Any]:
 
         period = launch(p["length"], p["amplitude"], omega0, p["g"]).period
         period = period if math.isfinite(period) else p["t_max"]
-    else:
+    elif period is None:
         period = float(agm_period(p["length"], p["amplitude"], p["g"]))
     per = period / h
     nb = max(1, min(points // 2, n + 1))

@@ -28,6 +28,7 @@ from .sampling import finite_list
 
 if TYPE_CHECKING:
     from ..numerics.crossing import PeriodSearch
+    from ..numerics.period import Periods
 
 __all__ = ["config_view", "convergence_view", "motion_view", "period_curve_view", "period_endpoint",
            "simulate_view", "trajectory_csv", "warm"]
@@ -48,34 +49,37 @@ def _num(x: float) -> float | None:
     return float(x) if math.isfinite(x) else None
 
 
-def period_view(length: float, amplitude: float, g: float) -> dict[str, Any]:
+def period_view(length: float, amplitude: float, g: float, per: Periods | None = None) -> dict[str, Any]:
     """The periods of :func:`pendulab.numerics.period.periods` that :class:`models.PeriodAnswer` lists
-    (the AGM period (7)-(8) and the small-angle one), and the amplitude in degrees."""
+    (the AGM period (7)-(8) and the small-angle one), and the amplitude in degrees; ``per``
+    where the caller has them already."""
     from ..numerics.period import periods
 
-    return _answer(models.PeriodAnswer, periods(length, amplitude, g).to_dict()) | {"amplitude_deg": math.degrees(amplitude)}
+    per = periods(length, amplitude, g) if per is None else per
+    return _answer(models.PeriodAnswer, per.to_dict()) | {"amplitude_deg": math.degrees(amplitude)}
 
 
-def estimate_view(length: float, amplitude: float, step: float, g: float, method: str) -> dict[str, Any]:
+def estimate_view(length: float, amplitude: float, step: float, g: float, method: str,
+                  period: float | None = None) -> dict[str, Any]:
     """The period estimated from a streamed simulation, or why there is none.
 
     Returns ``{"estimate": {...}, "status": "found", "reason": None}`` with the bracket
     ``[t_j, t_{j+1}]``, its midpoint, the linear and inverse-cubic (problem 3(d)) estimates
     and their absolute errors against the AGM period; else ``estimate`` None, the search's
     status (:class:`pendulab.numerics.crossing.PeriodSearch`; ``not_run`` where the search does not
-    run) and a line saying why.
+    run) and a line saying why. ``period``: the AGM period where the caller has it.
     """
     from ..numerics.crossing import default_t_max, search_period
     from ..numerics.period import agm_period
 
-    period = float(agm_period(length, amplitude, g))
+    period = float(agm_period(length, amplitude, g)) if period is None else period
     span = default_t_max(period, step)
     if reason := limits.search_too_long(span, step, period, resolve(method)):
         return {"estimate": None, "status": NOT_RUN, "reason": reason}  # the period is too long for this step: say so, keep the rest
     if amplitude == 0:
         return {"estimate": None, "status": NOT_RUN,
                 "reason": "amplitude 0: released at rest at the bottom the pendulum does not move, so it has no period to find"}
-    s = search_period(length, amplitude, step, g=g, method=method)
+    s = search_period(length, amplitude, step, g=g, method=method, period=period)
     if s.estimate is None:
         return {"estimate": None, "status": s.status.name.lower(), "reason": search_reason(s)}
     e = s.estimate.to_dict()
@@ -183,16 +187,20 @@ def simulate_view(params: Mapping[str, str]) -> dict[str, Any]:
     ``theta_sim - theta_exact`` 64 times per period (at most 20 000; min/max per column); ``energy``: the
     drift ``(E - E0)/(m g l)`` at every step, min/max per column.
     """
+    from ..numerics.period import periods
+
     p = parameters.simulation(params)
+    lang = words.language(params)
     points = parameters.points(params, limits.DEFAULT_PLOT_POINTS, limits.MAX_POINTS)
     launched = _launch_view(p, params)
+    per = periods(p["length"], p["amplitude"], p["g"])  # the one AGM period of the request, passed down
     if launched is None:
-        est = estimate_view(p["length"], p["amplitude"], p["step"], p["g"], p["method"])
+        est = estimate_view(p["length"], p["amplitude"], p["step"], p["g"], p["method"], per.period)
     else:  # the coursework's estimate times a release at rest; a launch has its period from pendulab.numerics.launched
         est = {"estimate": None, "status": NOT_RUN, "reason": (
             f"the period is estimated from a release at rest; this pendulum is launched with theta'(0) = {p['omega0']:g} "
             f"rad/s: its {'time for one turn' if launched['circulates'] else 'period'} is shown")}
-    sim = sampling.simulate_arrays(p, points)
+    sim = sampling.simulate_arrays(p, points, None if launched else per.period)
     sim["circulates"] = bool(launched and launched["circulates"])
     h, n, nb = p["step"], sim["n"], sim["columns"]
     f_idx, e_idx = sim["frame_idx"], sim["error_idx"]
@@ -240,8 +248,8 @@ def simulate_view(params: Mapping[str, str]) -> dict[str, Any]:
         "exact_frames": {"theta": finite_list(ex_frames[0]), "omega": finite_list(ex_frames[1])},
         "exact_phase": {"theta": finite_list(orbit[0]), "omega": finite_list(orbit[1])},
         "launch": launched,
-        "flags": _flags(p, sim, e_t, err, words.language(params)),
-        "period": period_view(p["length"], p["amplitude"], p["g"]) | est
+        "flags": _flags(p, sim, e_t, err, lang),
+        "period": period_view(p["length"], p["amplitude"], p["g"], per) | est
         | ({"period": launched["period"]} if launched else {}),
     }
 
@@ -302,10 +310,13 @@ def csv_blocks(p: Mapping[str, Any], points: int) -> Iterator[str]:
 
 
 def _csv_rows(p: Mapping[str, Any], t: np.ndarray, theta: np.ndarray, omega: np.ndarray) -> str:
-    """Rows with the exact motion, the global error and the energy error beside the state."""
+    """Rows with the exact motion, the global error and the energy error beside the state
+    (:func:`pendulab.numerics.motion.energy`, in ``m g l`` above the bottom, less ``E0``)."""
+    from ..numerics.motion import energy
+
     with np.errstate(invalid="ignore", over="ignore"):
         ex_theta, ex_omega = exact_state(p, t)
-        drift = omega * omega * (p["length"] / (2 * p["g"])) + (1.0 - np.cos(theta)) - _energy0(p)
+        drift = (energy(theta, omega, p["length"], p["g"]) + p["g"] / p["length"]) * (p["length"] / p["g"]) - _energy0(p)
         err = theta - ex_theta
     cols = [a.tolist() for a in (t, theta, omega, ex_theta, ex_omega, err, drift)]
     return "".join(",".join(repr(x) for x in row) + "\n" for row in zip(*cols))
@@ -349,7 +360,7 @@ def convergence_view(params: Mapping[str, str]) -> dict[str, Any]:
     limits.check_sweep([default_t_max(periods["period"], h, 0.0) for h in steps], steps, method)
     rows = []
     for h in steps:
-        est = estimate_view(p["length"], p["amplitude"], h, p["g"], method.name)
+        est = estimate_view(p["length"], p["amplitude"], h, p["g"], method.name, periods["period"])
         rows.append({"step": h} | est)
     return {"method": method.name, "order": method.order, "period": periods, "rows": rows}
 
