@@ -31,7 +31,8 @@ FIGURE3 = {
 
 #: Problem 3(b), footnote 4 of the coursework: the example group and its pendulum's length.
 EXAMPLE_GROUP = (262, 407, 634)
-EXAMPLE_LENGTH = 2.0800838231
+EXAMPLE_LENGTH_TEXT = "2.0800838231"
+EXAMPLE_LENGTH = float(EXAMPLE_LENGTH_TEXT)
 
 
 def reference_period(length, alpha, g=G, dps=50):

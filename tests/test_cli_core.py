@@ -9,9 +9,17 @@ import pytest
 
 from conftest import assert_one_line_error
 from pendulab.numerics.period import agm_period
-from reference import G_TEXT, G, ellipk_period, reference_period, reference_period_kp
+from reference import (
+    EXAMPLE_LENGTH,
+    EXAMPLE_LENGTH_TEXT,
+    G_TEXT,
+    G,
+    ellipk_period,
+    reference_period,
+    reference_period_kp,
+)
 
-L3 = 2.0800838231
+L3 = EXAMPLE_LENGTH
 
 
 def test_period_json(cli):
@@ -107,12 +115,12 @@ def test_estimate_table_defaults_to_problem3(cli):
     res = cli("estimate")
     assert res.code == 0
     # The exact period printed is the double nearest to the true one (mpmath's K).
-    assert "2.0800838231" in res.out and repr(ellipk_period(2.0800838231, 4 * math.pi / 5)) in res.out
+    assert EXAMPLE_LENGTH_TEXT in res.out and repr(ellipk_period(EXAMPLE_LENGTH, 4 * math.pi / 5)) in res.out
 
 
 def test_length(cli):
-    assert cli("length", "262", "407", "634").out.strip() == "2.0800838231"
-    assert cli("length", "262,407,634", "--json").json["length"] == 2.0800838231
+    assert cli("length", "262", "407", "634").out.strip() == EXAMPLE_LENGTH_TEXT
+    assert cli("length", "262,407,634", "--json").json["length"] == EXAMPLE_LENGTH
 
 
 @pytest.mark.parametrize(
@@ -222,7 +230,7 @@ def test_estimate_flags_rounding_level_and_offers_dense_output(cli):
     assert lines[5].startswith("* below the rounding level")
     data = cli("estimate", "-a", "4pi/5", "--step", "1e-4", "--json").json["rows"][0]
     assert abs(data["cubic_error_estimate"]) <= data["cubic_error_estimate_rounding_level"]
-    assert data["dense_error"] == abs(data["dense"] - cli("period", "-l", "2.0800838231", "-a", "4pi/5", "--json").json["period"])
+    assert data["dense_error"] == abs(data["dense"] - cli("period", "-l", EXAMPLE_LENGTH_TEXT, "-a", "4pi/5", "--json").json["period"])
 
 
 def test_period_needs_neither_numpy_nor_numba():

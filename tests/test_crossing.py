@@ -12,9 +12,9 @@ from pendulab.core.methods import Status
 from pendulab.numerics.crossing import estimate_period, observed_orders, search_period
 from pendulab.numerics.period import agm_period
 from pendulab.numerics.simulation import simulate
-from reference import G, taylor2_plain
+from reference import EXAMPLE_LENGTH, G, taylor2_plain
 
-L3 = 2.0800838231  # problem 3(b), the spec's example group
+L3 = EXAMPLE_LENGTH  # problem 3(b), the spec's example group
 A3 = 4 * math.pi / 5
 
 
@@ -146,19 +146,19 @@ def test_dense_estimate_reaches_the_method_order():
 
     from pendulab.numerics.period import period_mp
 
-    exact = float(period_mp(2.0800838231, 4 * math.pi / 5, dps=30))  # the double 4pi/5, mpmath AGM
+    exact = float(period_mp(EXAMPLE_LENGTH, 4 * math.pi / 5, dps=30))  # the double 4pi/5, mpmath AGM
     # taylor:8: the cubic stops at O(h^4), the dense estimate keeps going (slope ~8).
     hs = [0.1, 0.05]
-    dense = [abs(estimate_period(2.0800838231, 4 * math.pi / 5, h, method="taylor:8").dense - exact) for h in hs]
-    cubic = [abs(estimate_period(2.0800838231, 4 * math.pi / 5, h, method="taylor:8").cubic - exact) for h in hs]
+    dense = [abs(estimate_period(EXAMPLE_LENGTH, 4 * math.pi / 5, h, method="taylor:8").dense - exact) for h in hs]
+    cubic = [abs(estimate_period(EXAMPLE_LENGTH, 4 * math.pi / 5, h, method="taylor:8").cubic - exact) for h in hs]
     slope = math.log(dense[0] / dense[1]) / math.log(2)
     assert 7 < slope < 10.5, slope
     assert dense[1] < cubic[1] / 1000
     # taylor:12 at h = 0.1: 4e-6 by the cubic, 3e-13 by the dense output (measured).
-    est = estimate_period(2.0800838231, 4 * math.pi / 5, 0.1, method="taylor:12")
+    est = estimate_period(EXAMPLE_LENGTH, 4 * math.pi / 5, 0.1, method="taylor:12")
     assert abs(est.dense - exact) < 1e-12 < 1e-6 < abs(est.cubic - exact)
     # taylor2: both estimates carry the method's O(h^2) error, and agree to it.
-    est = estimate_period(2.0800838231, 4 * math.pi / 5, 1e-3)
+    est = estimate_period(EXAMPLE_LENGTH, 4 * math.pi / 5, 1e-3)
     assert abs(est.dense - est.cubic) < 1e-8
     assert mpmath  # mpmath's AGM is the reference above
 
@@ -168,7 +168,7 @@ def test_flow_series_is_the_solution_of_the_ode():
 
     from pendulab.numerics.dense import flow_series, series_zero
 
-    c, z1, z2 = -G / 2.0800838231, 2.4, 0.3
+    c, z1, z2 = -G / EXAMPLE_LENGTH, 2.4, 0.3
     x = flow_series(z1, z2, c)
     # Reference: mpmath's own Taylor-series ODE solver at 30 digits, independent of the recurrence.
     with mpmath.workdps(30):

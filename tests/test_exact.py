@@ -7,6 +7,7 @@ import pytest
 
 from pendulab.core.errors import InputError
 from pendulab.core.inputs import parse_angle, parse_number
+from reference import EXAMPLE_LENGTH_TEXT
 
 
 @pytest.mark.parametrize(
@@ -36,7 +37,7 @@ def test_angles_are_correctly_rounded():
 
 
 def test_numbers_are_exact():
-    assert parse_number("l", "2.0800838231").coef == Fraction(20800838231, 10**10)
+    assert parse_number("l", EXAMPLE_LENGTH_TEXT).coef == Fraction(20800838231, 10**10)
     assert parse_number("g", "9.80665").mpf(30) == mpmath.mpf("9.80665")
 
 

@@ -32,7 +32,7 @@ from pendulab.engine.kernels import (
     taylor2_step,
 )
 from pendulab.engine.libm import cos, sin
-from reference import G
+from reference import EXAMPLE_LENGTH, G
 
 #: The margins must exceed the table's distance from the C library's values (plus half an
 #: ulp for the rounding of ``s +- ds``) by this factor at least.
@@ -130,7 +130,7 @@ def _python_loop(alpha, c, h, n):
 
 
 @pytest.mark.parametrize("alpha", [1e-8, 1e-3, 0.5, 4 * math.pi / 5, 3.1, math.pi - 1e-9])
-@pytest.mark.parametrize("c", [-1e-3, -G / 2.0800838231, -1e3])
+@pytest.mark.parametrize("c", [-1e-3, -G / EXAMPLE_LENGTH, -1e3])
 def test_fast_step_equals_the_literal_step_along_trajectories(alpha, c):
     total_fallbacks = 0
     for h in (1e-7, 1e-6, 1e-5, 1e-3, 0.5):
@@ -144,7 +144,7 @@ def test_fast_step_equals_the_literal_step_along_trajectories(alpha, c):
 
 def test_fallback_rate_at_problem_3():
     """About 1 step in 10^3 falls back at h = 1e-6 (the README's figure), and the points stay exact."""
-    c = -G / 2.0800838231
+    c = -G / EXAMPLE_LENGTH
     bad, fallbacks, steps = _compare_steps(4 * math.pi / 5, c, 1e-6, 3_000_000)
     assert bad == 0 and steps == 3_000_000
     assert 1e-4 < fallbacks / steps < 1e-2
@@ -173,7 +173,7 @@ def test_driver_equals_the_python_loop_under_both_codes(alpha, log_h, log_c, bac
 
 
 def test_kernel_code_chooses_the_fast_step_for_fine_steps_of_3():
-    c = -G / 2.0800838231
+    c = -G / EXAMPLE_LENGTH
     h_max = math.sqrt(2 * FAST_MAX_K / -c)  # the coarsest step the table step is tried at
     assert kernel_code(TAYLOR2, c, 1e-6) == TAYLOR2_FAST
     assert kernel_code(TAYLOR2, c, -1e-6) == TAYLOR2_FAST  # backwards in time as well
@@ -203,24 +203,24 @@ def test_the_library_runs_the_chosen_code(monkeypatch, h, code):
     simulate gives the coursework loop's points, bit for bit."""
     from pendulab.numerics import crossing, simulation
 
-    c = -G / 2.0800838231
+    c = -G / EXAMPLE_LENGTH
     n = 20_000
     ref1, ref2 = _python_loop(2.5, c, h, n)
     driven = _codes_used(monkeypatch, "drive")
-    full = simulation.simulate(2.0800838231, 2.5, h, n * h)
+    full = simulation.simulate(EXAMPLE_LENGTH, 2.5, h, n * h)
     assert len(full.theta) == n + 1 and _same(full.theta, ref1) and _same(full.omega, ref2)
-    thin = simulation.simulate(2.0800838231, 2.5, h, n * h, stride=1000)
+    thin = simulation.simulate(EXAMPLE_LENGTH, 2.5, h, n * h, stride=1000)
     assert _same(thin.theta, ref1[::1000]) and _same(thin.omega, ref2[::1000])
     assert driven and set(driven) == {code}
     searched = _codes_used(monkeypatch, "search_return")
-    crossing.search_period(2.0800838231, 2.5, h, t_max=20 * h)
+    crossing.search_period(EXAMPLE_LENGTH, 2.5, h, t_max=20 * h)
     assert searched and set(searched) == {code}
 
 
 @pytest.mark.parametrize(("alpha", "h"), [(4 * math.pi / 5, 1e-5), (0.3, 1e-4), (3.0, 1e-4), (1e-3, 1e-4)])
 @pytest.mark.parametrize("code", [TAYLOR2, TAYLOR2_FAST])
 def test_first_return_equals_the_python_loop(alpha, h, code):
-    c = -G / 2.0800838231
+    c = -G / EXAMPLE_LENGTH
     status, j, z1w, z2w = first_return(code, 2, alpha, c, h, int(10 / h))
     assert status == FOUND
     ref1, ref2 = _python_loop(alpha, c, h, j + 2)
@@ -228,7 +228,7 @@ def test_first_return_equals_the_python_loop(alpha, h, code):
     assert ref2[j] > 0.0 >= ref2[j + 1]
 
 
-@pytest.mark.parametrize(("length", "alpha"), [(2.0800838231, 4 * math.pi / 5), (0.25, 0.2), (9.0, 3.1)])
+@pytest.mark.parametrize(("length", "alpha"), [(EXAMPLE_LENGTH, 4 * math.pi / 5), (0.25, 0.2), (9.0, 3.1)])
 def test_period_search_with_the_fast_code_equals_the_literal_one_at_a_fine_step(monkeypatch, length, alpha):
     """search_period at h = 1e-6 (millions of steps, thousands of them through the fallback):
     the same status, the same j, the same window and the same estimates, bit for bit, with the

@@ -11,6 +11,7 @@ import numpy as np
 import pytest
 
 from pendulab.cli import SECTIONS, LazyGroup, cli, main
+from reference import EXAMPLE_LENGTH
 
 ROOT = Path(__file__).resolve().parents[1]
 README = ROOT / "README.md"
@@ -227,7 +228,7 @@ def test_plots_are_exported_with_the_result_first():
 def test_to_frame_and_the_notebook_view_show_the_errors():
     from pendulab import estimate_period
 
-    est = estimate_period(2.0800838231, 4 * math.pi / 5, step=1e-3)
+    est = estimate_period(EXAMPLE_LENGTH, 4 * math.pi / 5, step=1e-3)
     row = est.to_frame().iloc[0]
     for name in ("linear_error", "cubic_error", "dense_error"):
         assert row[name] == getattr(est, name)

@@ -7,13 +7,14 @@ from hypothesis import strategies as st
 
 from pendulab.core.errors import InputError
 from pendulab.numerics.group import group_length
+from reference import EXAMPLE_LENGTH, EXAMPLE_LENGTH_TEXT
 
 
 def test_spec_example():
     # Footnote 4: 262, 407, 634 give m = 133 and l = 2.0800838231.
     res = group_length([262, 407, 634])
     assert res.sum == 1303 and res.digits == "133"
-    assert res.length_text == "2.0800838231" and res.length == 2.0800838231
+    assert res.length_text == EXAMPLE_LENGTH_TEXT and res.length == EXAMPLE_LENGTH
 
 
 @pytest.mark.parametrize(

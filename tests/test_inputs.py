@@ -17,13 +17,14 @@ from hypothesis import strategies as st
 from hostile import HOSTILE
 from pendulab.core import inputs, methods
 from pendulab.core.errors import InputError, NumericalError, PendulabError
+from reference import EXAMPLE_LENGTH_TEXT
 
 M = {"m": Fraction(1), "cm": Fraction(1, 100), "mm": Fraction(1, 1000)}
 
 
 @pytest.mark.parametrize("text, coef", [("3.5", Fraction(7, 2)), ("-2e-3", Fraction(-1, 500)), ("1/3", Fraction(1, 3)),
                                         (".5", Fraction(1, 2)), ("5.", Fraction(5)), (" 7 / 2 ", Fraction(7, 2)),
-                                        ("2.0800838231", Fraction(20800838231, 10**10)), ("1e-400", Fraction(1, 10**400))])
+                                        (EXAMPLE_LENGTH_TEXT, Fraction(20800838231, 10**10)), ("1e-400", Fraction(1, 10**400))])
 def test_real_is_exact(text, coef):
     x = inputs.real("x", text)
     assert x.coef == coef and x.pi_power == 0 and x.text == text.strip()

@@ -8,6 +8,7 @@ from scipy.interpolate import BarycentricInterpolator
 
 from pendulab.core.errors import InputError
 from pendulab.numerics.interpolation import divided_differences, inverse_cubic, newton_eval
+from reference import EXAMPLE_LENGTH
 
 
 def test_newton_form_agrees_with_scipy_barycentric():
@@ -79,7 +80,7 @@ def test_error_estimate_below_rounding_level_is_flagged():
     from pendulab.numerics.crossing import estimate_period
 
     # The README's h = 1e-4 row: the estimate 4.4e-17 comes from rounding t_k = k h.
-    est = estimate_period(2.0800838231, 4 * math.pi / 5, 1e-4)
+    est = estimate_period(EXAMPLE_LENGTH, 4 * math.pi / 5, 1e-4)
     ip = est.interpolation
     h = Fraction(est.step)
     exact_t = [(est.j - 2 + k) * h for k in range(5)]  # t_k = k h with no rounding
@@ -89,7 +90,7 @@ def test_error_estimate_below_rounding_level_is_flagged():
     assert abs(ip.error_estimate) <= ip.rounding_level and not ip.error_estimate_resolved
     assert abs(ip.error_estimate - float(exact)) <= ip.rounding_level
     # At h = 1e-2 the estimate is interpolation error, far above the rounding level.
-    est = estimate_period(2.0800838231, 4 * math.pi / 5, 1e-2)
+    est = estimate_period(EXAMPLE_LENGTH, 4 * math.pi / 5, 1e-2)
     ip = est.interpolation
     exact_t = [(est.j - 2 + k) * Fraction(est.step) for k in range(5)]
     exact = exact_error_estimate([*ip.z2, ip.fifth[0]], [*exact_t[1:], exact_t[0]])

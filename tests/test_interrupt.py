@@ -16,7 +16,7 @@ from hypothesis import strategies as st
 
 from pendulab.core.interrupt import deferred, pieces
 from pendulab.engine import kernels
-from reference import G
+from reference import EXAMPLE_LENGTH, G
 
 METHODS = [(0, 2), (1, 4), (2, 2), (3, 1), (3, 5), (3, 12)]  # taylor2, rk4, verlet, taylor:1, 5, 12
 
@@ -58,7 +58,7 @@ def _cut(method, order, alpha, c, h, n, stride, ref1, ref2, one):
 
 def test_fast_kernels_in_pieces_give_the_same_bits(monkeypatch):
     """(3) long and fine runs through the table's sine (the fast kernel code), in pieces."""
-    alpha, c, h, n = 2.5, -G / 2.0800838231, 1e-5, 501_234
+    alpha, c, h, n = 2.5, -G / EXAMPLE_LENGTH, 1e-5, 501_234
     assert kernels.kernel_code(0, c, h) == kernels.TAYLOR2_FAST
     ref1, ref2 = _one_call(0, 2, alpha, c, h, n)
     one = kernels.first_return(kernels.TAYLOR2_FAST, 2, alpha, c, h, n)

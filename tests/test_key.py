@@ -22,7 +22,7 @@ from pendulab.cli import main
 from pendulab.core.errors import InputError
 from pendulab.jobs.key import answer_key, parse_entries, parse_groups, repeated_students, tolerance
 from pendulab.numerics.period import FIXED_ITERATIONS_ULPS
-from reference import G
+from reference import EXAMPLE_LENGTH, EXAMPLE_LENGTH_TEXT, G
 
 GROUPS = [(262, 407, 634), (99999, 1), (81234, 90876), (11111,), (98765, 43210, 55555)]
 
@@ -265,7 +265,7 @@ def test_cli_csv_is_a_plain_table(class_file, tmp_path, capsys):
             assert f"h{h}_{col}" in df
     for k in range(4):
         assert {f"3d_node{k}", f"3d_z2{k}", f"3d_t{k}", f"3d_coefficient{k}"} <= set(df)
-    assert df["t_hat"][0] == pytest.approx(plain.agm7_period(2.0800838231), rel=1e-15)
+    assert df["t_hat"][0] == pytest.approx(plain.agm7_period(EXAMPLE_LENGTH), rel=1e-15)
     # Every float cell is the shortest text that reads back as its double.
     header = rows[0]
     for row in rows[1:]:
@@ -285,7 +285,7 @@ def test_cli_pdf_has_the_class_page_and_names(class_file, tmp_path, capsys):
     assert main(["key", "--groups", str(class_file), "--output", str(pdf)]) == 0
     reader = pypdf.PdfReader(str(pdf))
     content = "\n".join(p.extract_text() for p in reader.pages)
-    assert "2.0800838231" in content and "99999, 1" in content and "leaves at" in content
+    assert EXAMPLE_LENGTH_TEXT in content and "99999, 1" in content and "leaves at" in content
     assert "Ana Sá" in content and "line 2" in content
     words = " ".join(content.split())
     for phrase in ("Answers common to every group", "Problem 2", "401 points", "601 points", "Problem 5",

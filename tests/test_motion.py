@@ -9,7 +9,7 @@ from pendulab.core.errors import InputError
 from pendulab.numerics.motion import energy, exact_motion, global_error, jacobi, quarter_period
 from pendulab.numerics.period import agm_period
 from pendulab.numerics.simulation import simulate
-from reference import G
+from reference import EXAMPLE_LENGTH, G
 
 
 def mp_motion(length, alpha, t, dps=40):
@@ -33,7 +33,7 @@ AMPLITUDES = [1e-3, 0.5, math.pi / 4, 2.0, 2.9, 3.0, 3.14, math.pi - 1e-4, math.
 
 @pytest.mark.parametrize("alpha", AMPLITUDES)
 def test_exact_motion_matches_mpmath(alpha):
-    length = 2.0800838231
+    length = EXAMPLE_LENGTH
     period = agm_period(length, alpha)
     t = np.linspace(0, 2.5 * period, 17)
     ex = exact_motion(length, alpha, t)
@@ -145,7 +145,7 @@ def test_exact_motion_within_its_bound_densely(alpha):
     # 1500 points over 2.5 periods (the 17 points above missed 7.9e-14 at pi - 1e-12).
     from pendulab.numerics.motion import exact_motion_error_bound
 
-    length = 2.0800838231
+    length = EXAMPLE_LENGTH
     t = np.linspace(0, 2.5 * agm_period(length, alpha), 1500)
     ex = exact_motion(length, alpha, t)
     ref = mp_motion_many(length, alpha, t)
@@ -160,7 +160,7 @@ def test_exact_motion_within_its_bound_densely(alpha):
 def test_exact_motion_within_its_bound_after_1000_periods(alpha):
     from pendulab.numerics.motion import exact_motion_error_bound
 
-    length = 2.0800838231
+    length = EXAMPLE_LENGTH
     period = agm_period(length, alpha)
     t = np.linspace(1000 * period, 1001 * period, 120)
     ex = exact_motion(length, alpha, t)

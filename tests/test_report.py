@@ -18,7 +18,7 @@ import pytest
 from pendulab.cli import main
 from pendulab.jobs import problems
 from pendulab.report import build_report, load_catalogue
-from reference import G_TEXT, G
+from reference import EXAMPLE_LENGTH, EXAMPLE_LENGTH_TEXT, G_TEXT, G
 
 EXAMPLE = (262, 407, 634)
 OTHER = (81234, 90876)  # sum 172110 -> digits 1,7,2,1,1
@@ -109,9 +109,9 @@ def test_problem3_numbers(built):
     for value in ("0.750726419819", "-0.693434871572", "0.647933915928", "-1.33755362818",
                   "0.796774928412", "-0.297068336875"):
         assert value in text, value
-    assert "2.0800838231" in text  # the spec's footnote 4
+    assert EXAMPLE_LENGTH_TEXT in text  # the spec's footnote 4
     # T^ of the group's pendulum, independently by mpmath's AGM.
-    t_hat = 2 * mpmath.pi * mpmath.sqrt(mpmath.mpf("2.0800838231") / mpmath.mpf(G_TEXT)) / mpmath.agm(
+    t_hat = 2 * mpmath.pi * mpmath.sqrt(mpmath.mpf(EXAMPLE_LENGTH_TEXT) / mpmath.mpf(G_TEXT)) / mpmath.agm(
         1, mpmath.cos(2 * mpmath.pi / 5))
     assert mpmath.nstr(t_hat, 12) in text
     r = problems.problem3(EXAMPLE)
@@ -208,7 +208,7 @@ def test_report_numbers_come_from_the_programs(tmp_path):
     doc = _forced(tmp_path, EXAMPLE, None, spies, "en")
     assert {s[0].__name__ + ".py:" + s[1] for s in spies} == set(calls)
     # The printed numbers are the programs' own.
-    r3 = p["problem3.py"].period(2.0800838231, 1e-2, p["agm.py"].t_hat(2.0800838231, 4 * math.pi / 5))
+    r3 = p["problem3.py"].period(EXAMPLE_LENGTH, 1e-2, p["agm.py"].t_hat(EXAMPLE_LENGTH, 4 * math.pi / 5))
     assert doc.tables["p3c"][0][1] == str(r3["j"]) and doc.tables["p3c"][0][3] == num(r3["linear"], 12)
     t5 = p["problem5.py"].table(p["agm.py"].t_hat(3.5, 4 * math.pi / 5))
     assert [row[1] for row in doc.tables["p5d"]] == [num(period, 16) for _, period, _, _ in t5[1:]]
@@ -222,7 +222,7 @@ def test_report_numbers_come_from_the_programs(tmp_path):
 
 def test_short_pendulum_says_the_simulation_leaves_the_oscillation(built):
     text = words(built["short"]).split("Appendix: the programs")[0]  # the programs cite the example group
-    assert "1.0000000000" in text and "2.0800838231" not in text
+    assert "1.0000000000" in text and EXAMPLE_LENGTH_TEXT not in text
     assert "The step is too large for this pendulum" in text
     assert "it leaves the oscillation at t = 4 s" in text
     assert "then in view" not in text and "does not return to P within" not in text
@@ -321,7 +321,7 @@ def test_section0_takes_the_inputs_exactly(tmp_path):
     doc = section_data(EXAMPLE, "en", tmp_path, only=["AGM period"])
     # `pendulab period -l 2.0800838231 -a 4pi/5 --digits 20`, and mpmath here from the exact inputs.
     with mpmath.workdps(60):
-        t = 2 * mpmath.pi * mpmath.sqrt(mpmath.mpf("2.0800838231") / mpmath.mpf(G_TEXT)) / mpmath.agm(
+        t = 2 * mpmath.pi * mpmath.sqrt(mpmath.mpf(EXAMPLE_LENGTH_TEXT) / mpmath.mpf(G_TEXT)) / mpmath.agm(
             1, mpmath.cos(2 * mpmath.pi / 5))
     assert mpmath.nstr(t, 20) == "4.7894242309743877759"
     assert "$T = 4.7894242309743877759$ s" in doc.entry("agm.text")
@@ -504,7 +504,7 @@ def test_section0_sentences_are_true(tmp_path, lang):
 
     doc = section_data(EXAMPLE, lang, tmp_path, only=["AGM period"])
     text = doc.entry("agm.text")
-    length, alpha = 2.0800838231, 4 * math.pi / 5
+    length, alpha = EXAMPLE_LENGTH, 4 * math.pi / 5
 
     def nearest(l_, a):  # the true period of the doubles (elliptic K, not the AGM), rounded once
         with mpmath.workdps(60):
@@ -522,7 +522,7 @@ def test_section0_sentences_are_true(tmp_path, lang):
     # "the interval's two ends round to the same 20 digits": the ball contains mpmath's period
     # and is narrower than the rounding interval's half-width around the printed digits.
     digits = re.search(r"\$T = ([0-9.]+)\$ s", text).group(1)
-    ball = period_ball("2.0800838231", "4pi/5", prec=int(20 * 3.33) + 64)
+    ball = period_ball(EXAMPLE_LENGTH_TEXT, "4pi/5", prec=int(20 * 3.33) + 64)
     old = ctx.prec
     ctx.prec = 256
     try:

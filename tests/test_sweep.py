@@ -16,14 +16,14 @@ from pendulab.jobs.sweep import sweep
 from pendulab.numerics.crossing import estimate_period
 from pendulab.numerics.interpolation import inverse_cubic, inverse_cubic_rows
 from pendulab.numerics.period import agm_period
-from reference import G
+from reference import EXAMPLE_LENGTH, G
 
 AMPLITUDES = np.radians([5.0, 45.0, 120.0, 170.0, 179.0])
 
 
 @pytest.mark.parametrize("method", ["rk4", "verlet", "taylor:4"])
 def test_sweep_equals_estimate_period_bit_for_bit(method):
-    lengths = np.array([0.5, 1.0, 2.0800838231, 3.5, 1.0])
+    lengths = np.array([0.5, 1.0, EXAMPLE_LENGTH, 3.5, 1.0])
     r = sweep(AMPLITUDES, [1e-2, 1e-3], [method], lengths)
     assert len(r) == 10
     for row in range(len(r)):

@@ -25,7 +25,7 @@ from _browser import find_chromium
 from pendulab.core.inputs import parse_angle
 from pendulab.numerics import simulation
 from pendulab.web.child import serve_in_child
-from reference import ellipk_period
+from reference import EXAMPLE_LENGTH, EXAMPLE_LENGTH_TEXT, ellipk_period
 
 CHROMIUM_ARGS = [
     "--headless", "--no-sandbox", "--disable-gpu", "--disable-quic", "--no-first-run",
@@ -136,10 +136,10 @@ def test_page_shows_the_librarys_period_and_follows_the_amplitude(page, server, 
 
 
 def test_the_url_reproduces_the_view(page, server):
-    url = server + "/?length=2.0800838231&amplitude=4pi%2F5&unit=rad&g=9.80665&method=taylor2&step=0.01&t_max=12&speed=2"
+    url = server + f"/?length={EXAMPLE_LENGTH_TEXT}&amplitude=4pi%2F5&unit=rad&g=9.80665&method=taylor2&step=0.01&t_max=12&speed=2"
     page.goto(url)
-    wait_for_period(page, ellipk_period(2.0800838231, 0.8 * math.pi))
-    assert page.input_value("#length") == "2.0800838231"
+    wait_for_period(page, ellipk_period(EXAMPLE_LENGTH, 0.8 * math.pi))
+    assert page.input_value("#length") == EXAMPLE_LENGTH_TEXT
     assert page.input_value("#amplitude") == "4pi/5"
     assert page.input_value("#unit") == "rad"
     assert page.input_value("#step") == "0.01"

@@ -22,6 +22,7 @@ from pendulab.engine.kernels import TAYLOR2_FAST, drive
 from pendulab.numerics import simulation
 from pendulab.numerics.simulation import method_code
 from pendulab.web import parameters, sampling
+from reference import EXAMPLE_LENGTH
 
 
 def reference(theta, omega, nb, samples, alpha, omega0, c):
@@ -154,7 +155,7 @@ def _chosen(monkeypatch, owner, force_literal=False):
 def test_a_fine_pass_takes_the_fast_step_and_keeps_the_literal_values(monkeypatch):
     """At h = 1e-6 the pass and the CSV run the certified table step (the code simulate
     takes) and keep, bit for bit, what the literal step keeps."""
-    alpha, length, g, h, n = 4 * math.pi / 5, 2.0800838231, 9.80665, 1e-6, 300_000
+    alpha, length, g, h, n = 4 * math.pi / 5, EXAMPLE_LENGTH, 9.80665, 1e-6, 300_000
     c = -g / length
     code, order = method_code("taylor2")
     samples = samples_of(n, 7)
