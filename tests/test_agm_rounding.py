@@ -43,6 +43,7 @@ HARD = np.concatenate([math.pi - np.logspace(-1, -15, 57), below_pi[1:], [1e-300
                        np.nextafter(math.pi / 2, [0, 4])])
 
 
+@pytest.mark.slow
 def test_2000_random_pendulums_are_correctly_rounded():
     got = agm_period(RANDOM_LENGTH, RANDOM_ALPHA)
     ref = [nearest(length, a) for length, a in zip(RANDOM_LENGTH, RANDOM_ALPHA)]
@@ -72,6 +73,7 @@ def test_double_double_value_is_within_the_error_bound():
     assert worst < ERROR_BOUND / 2**10
 
 
+@pytest.mark.slow
 def test_half_angle_cos_is_accurate_to_double_double():
     from numba import njit
 
@@ -108,6 +110,7 @@ def test_failed_rounding_tests_are_recomputed():
     assert np.array_equal(agm_period(1.0, hard), [nearest(1.0, a) for a in hard])
 
 
+@pytest.mark.slow
 def test_extreme_lengths_and_g_give_representable_periods():
     # l/g under- or overflows, the period does not: sqrt(l)/sqrt(g).
     assert agm_period(1e-300, 1.0, g=1e300) == nearest(1e-300, 1.0, 1e300)

@@ -81,6 +81,7 @@ def test_approximate_period_and_bad_names():
         approximation_errors([math.pi])
 
 
+@pytest.mark.slow
 def test_cli_approximations(tmp_path, capsys):
     out = tmp_path / "errors.png"
     assert main(["approximations", "--plot", str(out)]) == 0
@@ -95,6 +96,7 @@ def test_cli_approximations(tmp_path, capsys):
     assert "--plot" in capsys.readouterr().err
 
 
+@pytest.mark.slow
 def test_plot_draws_each_formulas_errors():
     """One line per formula through (degrees, |error|), rounding-level errors left out (NaN)."""
     from pendulab.plots.beyond import approximation_errors as draw

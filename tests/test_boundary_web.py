@@ -65,6 +65,7 @@ def check(client, path: str, query: dict[str, str], names: set[str]) -> None:
     assert client.get("/api/config").status_code == 200  # still answering
 
 
+@pytest.mark.slow
 @settings(max_examples=300, deadline=30_000, suppress_health_check=[HealthCheck.function_scoped_fixture])
 @given(case=st.sampled_from(CASES), value=HOSTILE)
 def test_hostile_value_in_any_parameter(client, case, value):
@@ -74,6 +75,7 @@ def test_hostile_value_in_any_parameter(client, case, value):
     check(client, path, BASE | {name: value}, {name} | related)
 
 
+@pytest.mark.slow
 @settings(max_examples=100, deadline=30_000, suppress_health_check=[HealthCheck.function_scoped_fixture])
 @given(path=st.sampled_from(sorted(p for p, names in endpoints().items() if len(names) >= 2)), data=st.data())
 def test_several_hostile_values_at_once(client, path, data):
@@ -106,6 +108,7 @@ def test_convergence_takes_every_method_the_api_takes(client):
     assert r.status_code == 200 and r.json()["order"] == 4 and r.json()["method"] == "taylor:4"
 
 
+@pytest.mark.slow
 def test_long_periods_are_answered_without_an_estimate(client):
     # l = 1e300 m: T = 2 pi sqrt(l/g) ~ 2e150 s, computed right; no simulation reaches it.
     r = client.get("/api/simulate", params=BASE | {"length": "1e300"})

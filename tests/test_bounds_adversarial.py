@@ -34,6 +34,7 @@ def quick():
     return accuracy_claims.claims(quick=True)
 
 
+@pytest.mark.slow
 def test_every_search_stays_within_its_bound(quick):
     assert len(quick) == 13
     for row in quick:
@@ -125,6 +126,7 @@ def test_round_significant_texts(value, digits, text):
     assert round_significant(value, digits) == text
 
 
+@pytest.mark.slow
 @settings(max_examples=150, deadline=None)
 @given(p=st.integers(-20, 20), ulps=st.integers(-3, 3), mant=st.sampled_from([1.0, 5.0, 9.999999999999998, 2.5]),
        q=st.integers(-18, 2), err_ulps=st.integers(-2, 2))
@@ -149,6 +151,7 @@ def doc_rows(text):
             if line.startswith("|") and not re.match(r"\|\s*-", line)]
 
 
+@pytest.mark.slow
 def test_docs_table_states_what_a_quick_run_states(quick):
     written = doc_rows((ROOT / "docs" / "accuracy.md").read_text(encoding="utf-8"))
     figures = [accuracy_claims.markdown(*block(True)) for block in accuracy_claims.FIGURES]

@@ -62,6 +62,7 @@ def test_simulate_json_and_csv(cli):
     assert float(csv[22].split(",")[2]) == pytest.approx(-0.297068336875, abs=5e-13)
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("ext, magic", [("png", b"\x89PNG"), ("svg", b"<?xml"), ("pdf", b"%PDF")])
 def test_simulate_figures(cli, tmp_path, ext, magic):
     plot, phase = tmp_path / f"f1.{ext}", tmp_path / f"f2.{ext}"
@@ -71,6 +72,7 @@ def test_simulate_figures(cli, tmp_path, ext, magic):
     assert sorted(p.name for p in tmp_path.iterdir()) == sorted([plot.name, phase.name])  # no temp files
 
 
+@pytest.mark.slow
 def test_figures_leave_matplotlib_global_state_alone(cli, tmp_path):
     # The CLI draws on a Figure object: no backend switch, no rcParams edit, no pyplot figure.
     code = (

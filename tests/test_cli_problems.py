@@ -53,6 +53,7 @@ def test_newton_json(cli):
     assert [c["name"] for c in data["interval_conditions"]] == [c.name for c in lib.interval.conditions]
 
 
+@pytest.mark.slow
 def test_fit_json_and_plot(cli, tmp_path):
     plot = tmp_path / "fit.png"
     res = cli("fit", "--plot", plot, "--json")

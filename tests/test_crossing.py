@@ -18,6 +18,7 @@ L3 = EXAMPLE_LENGTH  # problem 3(b), the spec's example group
 A3 = 4 * math.pi / 5
 
 
+@pytest.mark.slow
 def test_streamed_search_equals_search_on_the_stored_trajectory():
     h = 1e-3
     est = estimate_period(L3, A3, h)
@@ -163,6 +164,7 @@ def test_dense_estimate_reaches_the_method_order():
     assert mpmath  # mpmath's AGM is the reference above
 
 
+@pytest.mark.slow
 def test_flow_series_is_the_solution_of_the_ode():
     import mpmath
 

@@ -75,12 +75,14 @@ def test_table_is_the_nearest_double_to_sin_and_cos():
             assert FAST_COS[k] == float(mpmath.cos(y)), k
 
 
+@pytest.mark.slow
 def test_table_sin_cos_within_a_quarter_of_the_margins_of_the_c_library():
     """10^6 angles (more in benchmarks): the certificate's premise, with a factor SAFETY to spare."""
     ws, wc = _worst_fraction_of_margin(_angles(1_000_000, 1))
     assert ws <= 1 / SAFETY and wc <= 1 / SAFETY, (ws, wc)
 
 
+@pytest.mark.slow
 def test_table_sin_cos_error_against_mpmath():
     """Against the true values: within an eighth of the margins (the C library adds below 1 ulp)."""
     x = _angles(2000, 2)[::5]
@@ -129,6 +131,7 @@ def _python_loop(alpha, c, h, n):
     return np.array(z1), np.array(z2)
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("alpha", [1e-8, 1e-3, 0.5, 4 * math.pi / 5, 3.1, math.pi - 1e-9])
 @pytest.mark.parametrize("c", [-1e-3, -G / EXAMPLE_LENGTH, -1e3])
 def test_fast_step_equals_the_literal_step_along_trajectories(alpha, c):
@@ -142,6 +145,7 @@ def test_fast_step_equals_the_literal_step_along_trajectories(alpha, c):
     assert total_fallbacks > 0  # the rounding test does fail sometimes: the fallback is exercised
 
 
+@pytest.mark.slow
 def test_fallback_rate_at_problem_3():
     """About 1 step in 10^3 falls back at h = 1e-6 (the README's figure), and the points stay exact."""
     c = -G / EXAMPLE_LENGTH
@@ -217,6 +221,7 @@ def test_the_library_runs_the_chosen_code(monkeypatch, h, code):
     assert searched and set(searched) == {code}
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize(("alpha", "h"), [(4 * math.pi / 5, 1e-5), (0.3, 1e-4), (3.0, 1e-4), (1e-3, 1e-4)])
 @pytest.mark.parametrize("code", [TAYLOR2, TAYLOR2_FAST])
 def test_first_return_equals_the_python_loop(alpha, h, code):

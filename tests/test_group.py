@@ -30,6 +30,7 @@ def test_hand_computed_cases(numbers, text):
     assert group_length(numbers).length_text == text
 
 
+@pytest.mark.slow
 @settings(max_examples=200, deadline=None)
 @given(st.lists(st.integers(0, 10**7), min_size=1, max_size=6).filter(lambda ns: str(sum(ns)).strip("0")))
 def test_length_is_the_correctly_rounded_geometric_mean(numbers):

@@ -43,6 +43,7 @@ def test_groups_from_an_endless_device_are_refused_at_the_byte_cap(cli, device):
     assert_one_line_error(res, "--groups", device, "at most 1e+07 bytes")
 
 
+@pytest.mark.slow
 def test_groups_from_a_named_pipe_with_no_writer_do_not_hang(tmp_path):
     fifo = tmp_path / "groups.fifo"
     os.mkfifo(fifo)
@@ -66,6 +67,7 @@ def test_groups_from_a_pipe_that_stays_silent_are_refused_after_the_timeout(monk
         os.close(writer)
 
 
+@pytest.mark.slow
 def test_endless_standard_input_is_capped(tmp_path):
     """``yes | pendulab key --groups -`` (and /dev/stdin): the byte cap, not memory."""
     for path in ("-", "/dev/stdin"):
@@ -79,6 +81,7 @@ def test_endless_standard_input_is_capped(tmp_path):
         assert "at most 1e+07 bytes" in res.stderr
 
 
+@pytest.mark.slow
 def test_groups_from_standard_input(tmp_path):
     res = _pendulab("key", "--groups", "-", "--json", stdin=open(_groups(tmp_path), "rb"))  # noqa: SIM115
     assert res.returncode == 0, res.stderr
@@ -259,6 +262,7 @@ def test_an_immutable_file_is_refused_before_the_work(tmp_path):
 # --- Finding 11: standard output that cannot be written --------------------------------------------
 
 
+@pytest.mark.slow
 def test_a_full_disk_on_stdout_is_one_line():
     with open("/dev/full", "w") as full:
         res = _pendulab("simulate", "--step", "1e-3", "--t-max", "5", stdout=full)
@@ -266,6 +270,7 @@ def test_a_full_disk_on_stdout_is_one_line():
     assert res.stderr.splitlines() == ["pendulab simulate: error: cannot write to standard output: No space left on device"]
 
 
+@pytest.mark.slow
 def test_a_closed_pipe_on_stdout_is_one_line():
     r, w = os.pipe()
     os.close(r)  # the reader has gone (``pendulab simulate | head -1``)
@@ -280,6 +285,7 @@ def test_a_closed_pipe_on_stdout_is_one_line():
 # --- Finding 12: a read-only install, a corrupt cache, SOURCE_DATE_EPOCH ------------------------------
 
 
+@pytest.mark.slow
 def test_a_read_only_install_falls_back_and_a_corrupt_cache_is_rebuilt(tmp_path):
     """The package where numba cannot write beside it (``__pycache__`` is not a folder) and a
     HOME whose cache folder cannot be made: the kernels are cached in the temporary folder,
@@ -329,6 +335,7 @@ def test_a_valid_source_date_epoch_is_taken(cli, monkeypatch, value):
 # --- Finding 6 (CLI): a scheduler address where no Dask scheduler listens ---------------------------
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("reply", [b"", b"HTTP/1.1 400 Bad Request\r\nContent-Length: 0\r\n\r\n" * 4])
 def test_a_scheduler_port_that_is_not_dask_is_one_line(cli, monkeypatch, reply):
     """A server that accepts and says nothing (Dask would wait for ever), or answers HTTP

@@ -174,6 +174,7 @@ PARSERS = {
 }
 
 
+@pytest.mark.slow
 @settings(max_examples=400, deadline=5000)
 @given(parser=st.sampled_from(sorted(PARSERS)), text=st.one_of(HOSTILE, st.text()))
 def test_every_parser_returns_or_raises_one_line(parser, text):

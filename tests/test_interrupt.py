@@ -154,6 +154,7 @@ def _assert_stopped(code, err, sig, command):
 ESTIMATE = ["estimate", "-l", "1", "-a", "2", "--step", "1e-3,2e-8"]  # about 4 * 10^8 steps
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize(("args", "tries"), [
     (ESTIMATE, 12),
     (ESTIMATE[:-1] + ["1e-3,5e-8", "--method", "rk4", "--dense"], 6),
@@ -170,12 +171,14 @@ def test_ctrl_c_mid_run_ends_with_one_line_and_130(tmp_path, args, tries):
     assert stopped >= tries // 2  # most tries did land mid-run
 
 
+@pytest.mark.slow
 def test_sigterm_mid_run_ends_with_one_line_and_143(tmp_path):
     for i in range(6):
         code, err = _signal_run(ESTIMATE, 0.8 * i, signal.SIGTERM, tmp_path)
         _assert_stopped(code, err, signal.SIGTERM, "estimate")
 
 
+@pytest.mark.slow
 def test_an_interrupted_key_keeps_the_old_output_and_leaves_no_temporary_file(tmp_path):
     """key on many groups, stopped by SIGINT or SIGTERM: the older key and its class file intact
     (or both new, where the run had finished), nothing left beside them."""
@@ -192,6 +195,7 @@ def test_an_interrupted_key_keeps_the_old_output_and_leaves_no_temporary_file(tm
         assert left == {"groups.txt", "key.csv", "key-class.csv", "tmp"}, left
 
 
+@pytest.mark.slow
 def test_sigterm_during_report_leaves_no_temporary_folder(tmp_path):
     pytest.importorskip("typst")
     out = tmp_path / "report.pdf"
@@ -204,6 +208,7 @@ def test_sigterm_during_report_leaves_no_temporary_folder(tmp_path):
         out.write_bytes(b"old report")
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("sig", [signal.SIGINT, signal.SIGTERM])
 def test_a_signal_between_the_key_and_its_class_file_waits_for_both(tmp_path, sig):
     """Ctrl+C (or SIGTERM) that comes after key.csv has been renamed into place and before
@@ -235,6 +240,7 @@ def test_a_signal_between_the_key_and_its_class_file_waits_for_both(tmp_path, si
     assert sorted(p.name for p in tmp_path.iterdir()) == ["groups.txt", "key-class.csv", "key.csv"]
 
 
+@pytest.mark.slow
 def test_ctrl_c_while_the_command_line_loads_is_one_line():
     """Ctrl+C in the first milliseconds of ``python -m pendulab``: ``-X importtime`` writes a
     line as each module finishes loading, and SIGINT goes at several delays after the line of
@@ -285,6 +291,7 @@ sys.exit(run())
 SWEEP = ["sweep", "--amplitude", "0.1:3:40", "--step", "1e-2", "--method", "rk4", "--output", "out.csv"]
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize(("args", "k", "sig"), [
     (SWEEP, 1, signal.SIGINT),  # the periods' AGM kernel, compiled before the sweep's threads start
     (SWEEP, 5, signal.SIGTERM),
@@ -305,6 +312,7 @@ def test_a_signal_while_a_kernel_compiles_ends_the_run(tmp_path, args, k, sig):
     assert sorted(p.name for p in tmp_path.iterdir()) == ["numba"]
 
 
+@pytest.mark.slow
 def test_ctrl_c_while_a_cold_sweep_compiles_ends_with_one_line(tmp_path):
     """A real Ctrl+C from outside at several moments of a sweep's first run after an install
     (an empty numba cache: seconds of compiling, in the main thread and on the sweep's
@@ -316,6 +324,7 @@ def test_ctrl_c_while_a_cold_sweep_compiles_ends_with_one_line(tmp_path):
         assert not (tmp_path / "out.csv").exists()
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("method", ["rk4", "taylor2"])  # the scalar searches; the lock-step lanes of (3)
 def test_a_signal_stops_a_long_sweep_on_threads_within_seconds(tmp_path, method):
     """A sweep on two threads whose every block of 16 pendulums is minutes of work (h = 1e-7
@@ -343,6 +352,7 @@ def test_a_signal_stops_a_long_sweep_on_threads_within_seconds(tmp_path, method)
         assert sorted(p.name for p in tmp_path.iterdir()) == [], "an output or temporary file was left"
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("sig", [signal.SIGINT, signal.SIGTERM])
 def test_a_signal_during_the_servers_warm_up_stops_it_with_its_line(tmp_path, sig):
     """``pendulab serve`` with an empty numba cache compiles its kernels on warm-up threads

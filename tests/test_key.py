@@ -240,6 +240,7 @@ def class_file(tmp_path):
     return p
 
 
+@pytest.mark.slow
 def test_cli_csv_is_a_plain_table(class_file, tmp_path, capsys):
     import pandas as pd
 
@@ -280,6 +281,7 @@ def test_cli_csv_is_a_plain_table(class_file, tmp_path, capsys):
     assert "4 (601 points)" in set(side["problem"]) and "tolerance" in set(side["problem"])
 
 
+@pytest.mark.slow
 def test_cli_pdf_has_the_class_page_and_names(class_file, tmp_path, capsys):
     pdf = tmp_path / "key.pdf"
     assert main(["key", "--groups", str(class_file), "--output", str(pdf)]) == 0

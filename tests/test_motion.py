@@ -140,6 +140,7 @@ def mp_motion_many(length, alpha, ts, dps=60):
     return np.array(out)
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("alpha", [2.0, math.pi - 1e-9, math.pi - 1e-12])
 def test_exact_motion_within_its_bound_densely(alpha):
     # 1500 points over 2.5 periods (the 17 points above missed 7.9e-14 at pi - 1e-12).

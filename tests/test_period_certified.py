@@ -128,6 +128,7 @@ def test_more_digits_than_python_prints_an_int(cli):
     assert len(line.split("=")[1].strip().removesuffix(" s").replace(".", "")) == 10000
 
 
+@pytest.mark.slow
 @settings(max_examples=200, deadline=None)
 @given(n=st.integers(0, 10**12000))
 def test_int_text_prints_any_length(n):
@@ -155,6 +156,7 @@ def test_cli_period_digits_near_pi(cli):
 
 
 
+@pytest.mark.slow
 @settings(max_examples=60, deadline=None)
 @given(
     num=st.integers(0, 10**15 - 1),
@@ -200,6 +202,7 @@ def test_seven_iterations_within_their_bound_up_to_the_truncation_limit():
     assert max(ulps) <= FIXED_ITERATIONS_ULPS
 
 
+@pytest.mark.slow
 @settings(max_examples=300, deadline=None)
 @given(
     digits=st.integers(1, 60),

@@ -81,6 +81,7 @@ def test_programs_are_plain_short_and_commented():
         assert max(len(line) for line in text.splitlines()) <= 88, name  # no line wraps in the report
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("students", [EXAMPLE, [99999, 1]])
 def test_each_program_runs_without_pendulab(written, students):
     for name in coursework.PROGRAMS:

@@ -123,6 +123,7 @@ def test_chunking_does_not_change_the_sum():
     assert a == pytest.approx(b, rel=1e-15)
 
 
+@pytest.mark.slow
 def test_ten_million_subintervals_in_bounded_memory():
     tracemalloc.start()
     try:
@@ -249,6 +250,7 @@ def test_singular_sum_at_every_amplitude_against_mpmath(alpha, n):
     assert quadrature_period(1.0, alpha, n) == pytest.approx(float(s_n_sin_form_mp(alpha, n)), rel=4e-15)
 
 
+@pytest.mark.slow
 def test_singular_sum_nodes_keep_their_distance_to_alpha():
     # With 10^4 panels the last node lies alpha/(9 10^4) from the singularity; its rounding
     # used to cost 2e-13 (measured); the reflected variable keeps S_n to rounding.

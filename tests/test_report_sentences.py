@@ -59,6 +59,7 @@ def test_a_bound_is_rounded_up():
     assert sci_up(1.2e-6, 2) == "1.2 × 10#super[−6]"
 
 
+@pytest.mark.slow
 @settings(max_examples=300, deadline=None)
 @given(st.floats(min_value=1e-300, max_value=1e300, allow_nan=False, allow_infinity=False), st.integers(1, 6))
 def test_up_is_never_below_and_within_one_unit(x, digits):
@@ -70,6 +71,7 @@ def test_up_is_never_below_and_within_one_unit(x, digits):
         assert shown - exact < unit
 
 
+@pytest.mark.slow
 @settings(max_examples=300, deadline=None)
 @given(st.floats(min_value=1e-12, max_value=1e3), st.floats(min_value=1e-12, max_value=1e3))
 def test_a_number_beside_a_threshold_stays_on_its_side(x, limit):
@@ -77,6 +79,7 @@ def test_a_number_beside_a_threshold_stays_on_its_side(x, limit):
     assert (shown < limit) == (x < limit)
 
 
+@pytest.mark.slow
 @settings(max_examples=300, deadline=None)
 @given(st.floats(min_value=1e-3, max_value=1e6), st.integers(-3, 3))
 def test_two_periods_print_equal_only_when_equal(a, ulps):
@@ -122,6 +125,7 @@ def test_section0_the_groups_seen_on_a_page(students, choice):
 
 
 # ----------------------------------------------------------------------------- 3(b)
+@pytest.mark.slow
 @SLOW
 @given(GROUPS)
 def test_3b_says_where_t_hat_lies_against_the_bracket(students):
@@ -283,6 +287,7 @@ def test_bad_names_are_named(text, count):
     assert exc.value.name == "names" and f"{count} name" in exc.value.allowed
 
 
+@pytest.mark.slow
 def test_names_on_the_cover(tmp_path):
     import pypdf
 

@@ -63,6 +63,7 @@ def _subclasses(cls):
         yield from _subclasses(sub)
 
 
+@pytest.mark.slow
 def test_to_dict_and_to_frame_of_a_trajectory(tr):
     d = tr.to_dict()
     assert list(d) == [f.name for f in dataclasses.fields(tr)] + ["n_steps"]  # the fields, then derived numbers

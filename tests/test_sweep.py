@@ -21,6 +21,7 @@ from reference import EXAMPLE_LENGTH, G
 AMPLITUDES = np.radians([5.0, 45.0, 120.0, 170.0, 179.0])
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("method", ["rk4", "verlet", "taylor:4"])
 def test_sweep_equals_estimate_period_bit_for_bit(method):
     lengths = np.array([0.5, 1.0, EXAMPLE_LENGTH, 3.5, 1.0])
@@ -98,6 +99,7 @@ def test_bad_inputs(tmp_path):
         r.write(tmp_path / "missing" / "x.csv")
 
 
+@pytest.mark.slow
 def test_dask_cluster_gives_the_same_result():
     import dask.distributed as distributed  # part of the test extra
     amplitudes = np.radians(np.linspace(1, 179, 23))
@@ -114,12 +116,14 @@ def test_dask_cluster_gives_the_same_result():
         assert np.array_equal(col, remote.columns[key], equal_nan=col.dtype.kind == "f"), key
 
 
+@pytest.mark.slow
 def test_unreachable_scheduler_is_one_clear_error(monkeypatch):
     monkeypatch.setattr("pendulab.jobs.sweep.cluster.CONNECT_TIMEOUT", 1)
     with pytest.raises(InputError, match="scheduler"):
         sweep([0.5], [1e-2], scheduler="tcp://127.0.0.1:9")  # port 9 (discard): nothing listens
 
 
+@pytest.mark.slow
 def test_cli_sweep(tmp_path, capsys):
     out, plot = tmp_path / "s.parquet", tmp_path / "s.png"
     args = ["sweep", "--amplitude", "10deg:170deg:9", "--step", "1e-2,1e-3", "--method", "taylor2,taylor:3",
@@ -245,6 +249,7 @@ def test_lanes_follow_the_serial_search_in_every_case():
     assert outcomes == {0, 1, 2}  # found, no return, left the oscillation
 
 
+@pytest.mark.slow
 def test_lanes_vectorise():
     """The lock-step loop compiles to packed (SIMD) double-precision arithmetic."""
     import platform

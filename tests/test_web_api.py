@@ -130,6 +130,7 @@ def test_simulate_keeps_every_columns_min_and_max(client):
     assert np.array_equal(np.unique(got_col), np.arange(1000))
 
 
+@pytest.mark.slow
 def test_long_run_plots_keep_the_shape():
     # l = 1, 30 deg, h = 1e-3, t_max = 2000 s: 980 periods. Every column that holds a turn
     # of the simulation reaches its extreme; the phase curve has no chord across the orbit.
@@ -516,6 +517,7 @@ def test_api_docs_are_served_locally(client):
     assert schema["openapi"].startswith("3.0.") and "/api/simulate" in schema["paths"]
 
 
+@pytest.mark.slow
 def test_csv_streams_in_blocks():
     # 10^6 rows are never held at once: the text comes in blocks of CSV_BLOCK rows, each
     # computed when asked for, and they join into the library's trajectory.
