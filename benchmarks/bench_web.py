@@ -31,6 +31,7 @@ import math
 import statistics
 import sys
 import time
+from pathlib import Path
 from unittest import mock
 
 import httpx
@@ -47,7 +48,9 @@ from pendulab.numerics.period import agm_period
 from pendulab.numerics.simulation import method_code, simulate, step_count
 from pendulab.web import sampling, views
 from pendulab.web.app import _encode
-from pendulab.web.child import serve_in_child
+
+sys.path.insert(0, str(Path(__file__).resolve().parent.parent / "tests"))
+from served import serve_in_child
 
 LENGTH, ALPHA, STEP, T_MAX = 3.5, 4 * math.pi / 5, 1e-4, 20.0
 QUERY = {"length": "3.5", "amplitude": "4pi/5", "step": "1e-4", "t_max": "20"}

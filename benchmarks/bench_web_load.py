@@ -25,13 +25,17 @@ import multiprocessing
 import os
 import socket
 import statistics
+import sys
 import threading
 import time
+from pathlib import Path
 
 import httpx
 
 from pendulab.web import limits, server
-from pendulab.web.child import serve_in_child
+
+sys.path.insert(0, str(Path(__file__).resolve().parent.parent / "tests"))
+from served import serve_in_child
 
 N_HEAVY = 200
 HEAVY = {"length": "1", "amplitude": "30deg", "step": "1e-5", "t_max": "20"}

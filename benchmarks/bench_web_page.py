@@ -28,7 +28,7 @@ from playwright.sync_api import sync_playwright
 
 sys.path.insert(0, str(Path(__file__).resolve().parent.parent / "tests"))
 from _browser import find_chromium
-from pendulab.web.child import serve_in_child
+from served import serve_in_child
 
 URL = "/?length=3.5&amplitude=144&unit=deg&step=1e-3&t_max=20"
 COLD = 5

@@ -54,6 +54,28 @@ def reference_period_kp(length, kp, g=G):
     return 4 * mpmath.sqrt(mpmath.mpf(length) / mpmath.mpf(g)) * mpmath.ellipk(1 - kp * kp)
 
 
+def period_mp(length, amplitude, g=G_TEXT, dps=50):
+    """``T = 2 pi sqrt(l/g) / M(1, cos(alpha/2))`` (8) by ``mpmath.agm`` at ``dps`` digits, from
+    the inputs taken exactly: a string as written (``"4pi/5"``, with the true pi, parsed by
+    :func:`pendulab.core.inputs.parse_angle`), a float as its binary value. Independent of the
+    library's double loop and of Arb: the cross-check of ``period_digits``."""
+    from pendulab.core.exact import Exact
+    from pendulab.core.inputs import parse_angle, parse_number
+
+    def exact(x, parser, name):
+        return parser(name, x) if isinstance(x, str) else Exact.of(float(x))
+
+    l_, a_, g_ = exact(length, parse_number, "length"), exact(amplitude, parse_angle, "amplitude"), exact(g, parse_number, "g")
+    with mpmath.workdps(dps):
+        if a_.pi_power == 1:
+            c = 1 - a_.coef
+            b0 = mpmath.sinpi(mpmath.mpf(c.numerator) / (2 * c.denominator))  # cos(c pi/2), 1 - c exact
+        else:
+            b0 = mpmath.cos(a_.mpf(dps) / 2)
+        t0 = 2 * mpmath.pi * mpmath.sqrt(l_.mpf(dps) / g_.mpf(dps))
+        return t0 / mpmath.agm(1, b0)
+
+
 def ellipk_period(length: float, alpha: float, g: float = G) -> float:
     """:func:`reference_period` at 30 digits, rounded to a double."""
     return float(reference_period(length, alpha, g, dps=30))

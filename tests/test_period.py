@@ -14,10 +14,9 @@ from pendulab.numerics.period import (
     fixed_iterations_error,
     fixed_iterations_limit,
     period_digits,
-    period_mp,
     small_angle_period,
 )
-from reference import G, reference_period
+from reference import G, period_mp, reference_period
 
 # Amplitudes on a uniform grid and ever closer to pi, down to 1e-12 away: K(m) is singular
 # there, and the AGM must still be right.

@@ -17,8 +17,8 @@ from hypothesis import strategies as st
 
 from conftest import assert_one_line_error
 from pendulab.core.errors import InputError
-from pendulab.numerics.period import period_ball, period_digits, period_mp
-from reference import G_TEXT, G, reference_period_kp
+from pendulab.numerics.period import period_ball, period_digits
+from reference import G_TEXT, G, period_mp, reference_period_kp
 
 
 def ref_period(length: str, alpha_coef: Fraction, pi_multiple: bool, g: str = G_TEXT, dps: int = 120):

@@ -9,7 +9,7 @@ from scipy.integrate import fixed_quad, quad
 
 from pendulab.core.errors import InputError
 from pendulab.jobs.problems import problem5
-from pendulab.numerics.period import agm_period, period_mp
+from pendulab.numerics.period import agm_period
 from pendulab.numerics.quadrature import (
     GAUSS3,
     Rule,
@@ -20,7 +20,7 @@ from pendulab.numerics.quadrature import (
     quadrature_period,
     substituted_integrand,
 )
-from reference import G_TEXT, G, reference_period
+from reference import G_TEXT, G, period_mp, reference_period
 
 L, ALPHA = 3.5, 4 * math.pi / 5  # problem 5
 

@@ -24,8 +24,8 @@ from playwright.sync_api import sync_playwright
 from _browser import find_chromium
 from pendulab.core.inputs import parse_angle
 from pendulab.numerics import simulation
-from pendulab.web.child import serve_in_child
 from reference import EXAMPLE_LENGTH, EXAMPLE_LENGTH_TEXT, ellipk_period
+from served import serve_in_child
 
 CHROMIUM_ARGS = [
     "--headless", "--no-sandbox", "--disable-gpu", "--disable-quic", "--no-first-run",

@@ -13,8 +13,8 @@ import time
 import httpx
 import pytest
 
-from pendulab.web.child import serve_in_child
 from reference import ellipk_period
+from served import serve_in_child
 
 N_REQUESTS = 200
 

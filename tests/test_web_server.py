@@ -29,8 +29,8 @@ from pendulab.core.interrupt import Stopped, stop_when
 from pendulab.core.methods import cost_per_step
 from pendulab.numerics.crossing import estimate_period
 from pendulab.web import create_app, limits, parameters, sampling, server
-from pendulab.web.child import free_port, serve_in_child
 from pendulab.web.guard import host_name
+from served import free_port, serve_in_child
 
 
 @pytest.fixture(scope="module")

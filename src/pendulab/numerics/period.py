@@ -40,7 +40,6 @@ __all__ = [
     "period_ball",
     "period_digits",
     "period_double",
-    "period_mp",
     "periods",
     "small_angle_period",
 ]
@@ -322,7 +321,8 @@ def period_ball(length: Any, amplitude: Any, g: Any = G_EXACT, prec: int = 128):
     Parameters
     ----------
     length, amplitude, g
-        As :func:`period_mp`: taken exactly.
+        Taken exactly: a string as written (``"4pi/5"`` with the true pi), a float as its
+        binary value, an :class:`~pendulab.core.exact.Exact` as it is.
     prec : int
         Working precision in bits.
 
@@ -343,26 +343,6 @@ def period_ball(length: Any, amplitude: Any, g: Any = G_EXACT, prec: int = 128):
             b0 = (_arb_of(a_) / 2).cos()
         t0 = 2 * arb.pi() * (_arb_of(l_) / _arb_of(g_)).sqrt()
         return t0 / arb(1).agm(b0)
-
-
-def period_mp(length: Any, amplitude: Any, g: Any = G_EXACT, dps: int = 50):
-    """The period as an ``mpmath.mpf`` computed at ``dps`` digits of working precision.
-
-    Inputs are taken exactly (see :func:`period_ball`) and range-checked exactly. Uses
-    ``mpmath.agm``, independent of this module's double-precision loop and of Arb: the
-    tests' cross-check of :func:`period_digits`.
-    """
-    import mpmath
-
-    l_, a_, g_ = _exact_inputs(length, amplitude, g)
-    with mpmath.workdps(dps):
-        if a_.pi_power == 1:
-            c = 1 - a_.coef
-            b0 = mpmath.sinpi(mpmath.mpf(c.numerator) / (2 * c.denominator))  # cos(c pi/2), 1 - c exact
-        else:
-            b0 = mpmath.cos(a_.mpf(dps) / 2)
-        t0 = 2 * mpmath.pi * mpmath.sqrt(l_.mpf(dps) / g_.mpf(dps))
-        return t0 / mpmath.agm(1, b0)
 
 
 def _round_significant(x: Fraction, digits: int) -> tuple[int, int]:
