@@ -92,6 +92,12 @@ presets: [SwaggerUIBundle.presets.apis], layout: "BaseLayout", validatorUrl: nul
 """
 
 
+def overflow(exc: ArithmeticError) -> InputError:
+    """A value whose arithmetic left the doubles (a route that did not bound it): a 422 too."""
+    return InputError("query", f"({type(exc).__name__})", "values whose arithmetic stays within the doubles "
+                                                        "(|x| < 1.8e308; smaller lengths, times or g)")
+
+
 def error_body(exc: InputError) -> dict[str, Any]:
     value = exc.value if isinstance(exc.value, (int, float, str)) or exc.value is None else str(exc.value)
     return {"error": {"field": exc.name, "value": value, "allowed": exc.allowed, "message": str(exc)}}
@@ -222,6 +228,8 @@ def create_app(allowed_hosts: Iterable[str] = guard.LOCAL_HOSTS) -> FastAPI:
                     return Response(_encode(call(params)), media_type="application/json")
             except InputError as exc:
                 return JSONResponse(error_body(exc), status_code=422)
+            except (OverflowError, FloatingPointError) as exc:
+                return JSONResponse(error_body(overflow(exc)), status_code=422)
             except Stopped:
                 return Response(status_code=499)  # nobody reads it
 
@@ -233,6 +241,8 @@ def create_app(allowed_hosts: Iterable[str] = guard.LOCAL_HOSTS) -> FastAPI:
             return JSONResponse(call(_given(query)))
         except InputError as exc:
             return JSONResponse(error_body(exc), status_code=422)
+        except (OverflowError, FloatingPointError) as exc:
+            return JSONResponse(error_body(overflow(exc)), status_code=422)
 
     bad: dict[int | str, dict[str, Any]] = {422: {"model": models.ErrorAnswer, "description": "a bad parameter, named"}}
 

@@ -9,6 +9,13 @@
   ``/api/config``) is a path, never a URL built from the request's ``Host``.
 - **HEAD where GET is**: a ``HEAD`` request is answered as the ``GET`` would be, without
   the body; a streamed body stops after its first block.
+- **No cross-site request**: a request a page of another site makes (``Sec-Fetch-Site:
+  cross-site``, or an ``Origin`` that is not one of the allowed hosts, or ``null``) gets 403
+  before any work: another site's page cannot start simulations on this machine.
+- **Bounded requests, before parsing**: a query of more than :data:`MAX_QUERY_BYTES` bytes
+  gets 414, one of more than :data:`MAX_PARAMETERS` parameters 422, and any request body
+  (the API has only GET) 413 with the connection closed, so a body sent a byte at a time
+  holds nothing (:mod:`pendulab.web.server` bounds the time of what is left).
 """
 from __future__ import annotations
 
@@ -21,6 +28,10 @@ import orjson
 
 #: The names of this computer that every server answers to.
 LOCAL_HOSTS = ("localhost", "127.0.0.1", "::1")
+#: The longest query string answered (the page's longest is under 300 bytes).
+MAX_QUERY_BYTES = 2048
+#: The most query parameters answered (a route takes at most 10).
+MAX_PARAMETERS = 32
 
 Scope = dict[str, Any]
 Message = dict[str, Any]
@@ -56,6 +67,10 @@ class Guard:
         if host_name(header) not in self.allowed:
             await _refuse(send, header)
             return
+        refused = self.refusal(scope)
+        if refused is not None:
+            await _answer(send, *refused)
+            return
         head = scope["method"] == "HEAD"
         if head:
             scope = dict(scope, method="GET")
@@ -90,6 +105,30 @@ class Guard:
         await self.app(scope, head_receive if head else receive, guarded_send)
 
 
+    def refusal(self, scope: Scope) -> tuple[int, str] | None:
+        """(status, message) for a request refused before any parsing or work, else None."""
+        headers = scope["headers"]
+        site = next((v for k, v in headers if k == b"sec-fetch-site"), None)
+        origin = next((v.decode("latin-1") for k, v in headers if k == b"origin"), None)
+        if site == b"cross-site" or (origin is not None and not self.same_host(origin)):
+            return 403, "this server answers its own page only, not a page of another site (Origin, Sec-Fetch-Site)"
+        query = scope.get("query_string", b"")
+        if len(query) > MAX_QUERY_BYTES:
+            return 414, f"the query string must be at most {MAX_QUERY_BYTES} bytes ({len(query)} sent)"
+        count = query.count(b"&") + query.count(b";") + 1 if query else 0
+        if count > MAX_PARAMETERS:
+            return 422, f"at most {MAX_PARAMETERS} query parameters ({count} sent)"
+        for k, v in headers:
+            if (k == b"content-length" and v.strip() not in (b"0", b"")) or k == b"transfer-encoding":
+                return 413, "the API takes no request body (every route is GET)"
+        return None
+
+    def same_host(self, origin: str) -> bool:
+        """Whether an ``Origin`` header names an allowed host (``null``, a sandboxed or file page, does not)."""
+        parts = urlsplit(origin.strip())
+        return parts.scheme in ("http", "https") and host_name(parts.netloc) in self.allowed
+
+
 def _relative(key: bytes, value: bytes) -> tuple[bytes, bytes]:
     """A ``Location`` header as a path (and query): the client resolves it against the URL it asked for."""
     if key.lower() != b"location":
@@ -99,6 +138,15 @@ def _relative(key: bytes, value: bytes) -> tuple[bytes, bytes]:
     if path.startswith("//"):  # a path that a browser would read as a host name
         path = "/" + path.lstrip("/")
     return key, path.encode("latin-1")
+
+
+async def _answer(send: Any, status: int, message: str) -> None:
+    """A JSON error answer, and the connection closed after it (an unread body is never waited for)."""
+    body = orjson.dumps({"error": {"message": message}})
+    await send({"type": "http.response.start", "status": status,
+                "headers": [(b"content-type", b"application/json"), (b"content-length", str(len(body)).encode()),
+                            (b"connection", b"close")]})
+    await send({"type": "http.response.body", "body": body})
 
 
 async def _refuse(send: Any, header: str) -> None:

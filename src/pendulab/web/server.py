@@ -8,10 +8,17 @@ descriptors until none is left. :class:`GuardedH11` bounds that:
   :data:`HEADER_TIMEOUT` seconds of its first byte (or of connecting) is closed;
 - **write stall**: a client that reads nothing of an answer for :data:`STALL_TIMEOUT`
   seconds is dropped, with the answer's bytes still buffered for it;
+- **body timeout**: a request body (which :mod:`pendulab.web.guard` refuses at once, a
+  client may still send one) not complete within :data:`BODY_TIMEOUT` seconds closes the
+  connection;
+- **idle timeout**: a kept-alive connection with no new request for 5 s is closed (uvicorn's
+  ``timeout_keep_alive``);
 - **connection cap**: at most :func:`connection_cap` connections, below the process's
-  descriptor limit less a batch of accepts (:func:`accept_batch`); a new one past the cap
-  closes the oldest connection still waiting for its headers, or is itself closed when
-  every connection is busy.
+  descriptor limit less a batch of accepts (:func:`accept_batch`), and at most
+  :data:`MAX_PER_CLIENT` from one address; a new one past either cap closes the oldest
+  connection (of that address, for its cap) still waiting for its headers or body, or is
+  itself closed when every such connection is busy. A client that opens hundreds of
+  connections and trickles bytes into them holds its own places only.
 
 An accept that still fails for want of descriptors is logged once a minute in one line
 (:func:`quiet_accept_errors`); asyncio alone logs a traceback per attempt, thousands a
@@ -30,6 +37,10 @@ from uvicorn.protocols.http.h11_impl import H11Protocol
 
 #: Seconds a connection may take to send its request headers.
 HEADER_TIMEOUT = 10.0
+#: Seconds a request's body may take once its headers are in.
+BODY_TIMEOUT = 10.0
+#: At most this many connections from one address (a browser opens 6 per server).
+MAX_PER_CLIENT = 32
 #: Seconds a client may read nothing of an answer before it is dropped.
 STALL_TIMEOUT = 30.0
 #: At most this many connections, whatever the descriptor limit.
@@ -77,29 +88,57 @@ class GuardedH11(H11Protocol):
     """
 
     header_timeout: float = HEADER_TIMEOUT
+    body_timeout: float = BODY_TIMEOUT
     stall_timeout: float = STALL_TIMEOUT
     max_connections: int = MAX_CONNECTIONS
-    #: Connections still waiting for their request's headers, oldest first (one list per
-    #: class: :func:`protocol` gives each server its own).
+    max_per_client: int = MAX_PER_CLIENT
+    #: Connections still waiting for their request's headers or body, oldest first (one
+    #: list per class: :func:`protocol` gives each server its own).
     waiting: ClassVar[dict[GuardedH11, float]] = {}
+    #: The open connections of each client address.
+    by_client: ClassVar[dict[str, set[GuardedH11]]] = {}
 
     def __init__(self, *args: Any, **kwargs: Any):
         super().__init__(*args, **kwargs)
         self._header_timer: asyncio.TimerHandle | None = None
+        self._body_timer: asyncio.TimerHandle | None = None
         self._stall_timer: asyncio.TimerHandle | None = None
+        self._peer = ""
 
     def connection_made(self, transport: asyncio.Transport) -> None:  # type: ignore[override]
         super().connection_made(transport)
-        if len(self.connections) > self.max_connections:
-            oldest = next(iter(self.waiting), None)
-            if oldest is None:  # every connection is at work: this one waits for a free place
-                transport.abort()
-                return
-            oldest._drop()
+        peer = transport.get_extra_info("peername")
+        self._peer = str(peer[0]) if isinstance(peer, tuple) and peer else ""
+        mine = self.by_client.setdefault(self._peer, set())
+        mine.add(self)
+        if len(mine) > self.max_per_client and not self._make_room(mine):
+            return
+        if len(self.connections) > self.max_connections and not self._make_room(None):
+            return
         self._wait_for_headers()
 
+    def _make_room(self, among: set[GuardedH11] | None) -> bool:
+        """Close the oldest waiting connection (of ``among``, else of all); where none waits,
+        close this one and return False."""
+        oldest = next((c for c in self.waiting if among is None or c in among), None)
+        if oldest is None:  # every such connection is at work: this one waits for a free place
+            self._forget_client()
+            self.transport.abort()
+            return False
+        oldest._drop()
+        return True
+
+    def _forget_client(self) -> None:
+        mine = self.by_client.get(self._peer)
+        if mine is not None:
+            mine.discard(self)
+            if not mine:
+                del self.by_client[self._peer]
+
     def connection_lost(self, exc: Exception | None) -> None:
+        self._forget_client()
         self._headers_done()
+        self._body_done()
         if self._stall_timer is not None:
             self._stall_timer.cancel()
             self._stall_timer = None
@@ -109,10 +148,15 @@ class GuardedH11(H11Protocol):
         super().data_received(data)
         if self.transport.is_closing():
             self._headers_done()
+            self._body_done()
         elif self.conn.their_state is h11.IDLE:  # a request begun, its headers not all here
             self._wait_for_headers()
         else:
             self._headers_done()
+            if self.conn.their_state is h11.SEND_BODY:  # headers in, a body on its way
+                self._wait_for_body()
+            else:
+                self._body_done()
 
     def pause_writing(self) -> None:
         super().pause_writing()
@@ -136,19 +180,34 @@ class GuardedH11(H11Protocol):
             self._header_timer = None
         self.waiting.pop(self, None)
 
+    def _wait_for_body(self) -> None:
+        if self._body_timer is None:
+            self._body_timer = self.loop.call_later(self.body_timeout, self._drop)
+            self.waiting[self] = time.monotonic()
+
+    def _body_done(self) -> None:
+        if self._body_timer is not None:
+            self._body_timer.cancel()
+            self._body_timer = None
+            if self._header_timer is None:
+                self.waiting.pop(self, None)
+
     def _drop(self) -> None:
         """Close the connection at once (its unsent bytes are discarded)."""
         self._headers_done()
+        self._body_done()
         if not self.transport.is_closing():
             self.transport.abort()
 
 
 def protocol(header_timeout: float = HEADER_TIMEOUT, stall_timeout: float = STALL_TIMEOUT,
-             max_connections: int | None = None) -> type[GuardedH11]:
-    """A :class:`GuardedH11` with these limits and its own list of waiting connections."""
+             max_connections: int | None = None, body_timeout: float = BODY_TIMEOUT,
+             max_per_client: int = MAX_PER_CLIENT) -> type[GuardedH11]:
+    """A :class:`GuardedH11` with these limits and its own lists of waiting connections and clients."""
     return type("GuardedH11", (GuardedH11,), {
-        "header_timeout": header_timeout, "stall_timeout": stall_timeout,
-        "max_connections": connection_cap() if max_connections is None else max_connections, "waiting": {},
+        "header_timeout": header_timeout, "stall_timeout": stall_timeout, "body_timeout": body_timeout,
+        "max_connections": connection_cap() if max_connections is None else max_connections,
+        "max_per_client": max_per_client, "waiting": {}, "by_client": {},
     })
 
 

@@ -378,7 +378,11 @@ def motion_view(params: Mapping[str, str]) -> dict[str, Any]:
     p = parameters.pendulum(params)
     t_max = parameters.positive(params, "t_max", parameters.DEFAULTS["t_max"])
     view = period_view(p["length"], p["amplitude"], p["g"])
-    count = int(min(sampling.FRAME_POINTS, max(2.0, math.ceil(16 * t_max / view["period"]) + 1)))
+    frames = 16 * t_max / view["period"]
+    if not math.isfinite(frames):  # 16 frames a period: a count beyond the doubles
+        raise InputError("t_max", inputs.shown(params.get("t_max", t_max)), f"at most {1e300 * view['period']:.3g} s "
+                         f"(10^300 periods of {view['period']:.6g} s)")
+    count = int(min(sampling.FRAME_POINTS, max(2.0, math.ceil(frames) + 1)))
     t = np.linspace(0.0, t_max, count)
     with np.errstate(invalid="ignore", over="ignore"):  # sqrt(g/l) t beyond the doubles: null
         m = exact_motion(p["length"], p["amplitude"], t, p["g"])
