@@ -6,16 +6,16 @@
 - connections that never finish their headers are closed, and cannot lock others out;
 - under a 128-descriptor limit a flood of such connections leaves a quiet log and a
   server that answers;
-- the work of a client that has gone is stopped (the server's CPU time shows it).
+- the work of a client that has gone is stopped (the pieces the server ran show it).
 """
 from __future__ import annotations
 
 import contextlib
 import math
-import os
 import socket
 import threading
 import time
+from urllib.parse import urlencode
 
 import httpx
 import numpy as np
@@ -25,6 +25,7 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 
 from pendulab.cli import main
+from pendulab.core import interrupt
 from pendulab.core.interrupt import Stopped, stop_when
 from pendulab.core.methods import cost_per_step
 from pendulab.numerics.crossing import estimate_period
@@ -221,50 +222,54 @@ def test_descriptor_limit_keeps_the_log_quiet_and_the_server_answering():
 
 # ------------------------------------------------------------------ abandoned work
 
-def cpu_seconds(pid: int) -> float:
-    with open(f"/proc/{pid}/stat") as f:
-        fields = f.read().rsplit(")", 1)[1].split()
-    return (int(fields[11]) + int(fields[12])) / os.sysconf("SC_CLK_TCK")
-
-
-def settle(pid: int, quiet: float = 1.0, deadline: float = 120.0) -> float:
-    """The server's CPU seconds once it has used none for ``quiet`` seconds."""
-    end = time.monotonic() + deadline
-    last = cpu_seconds(pid)
-    while time.monotonic() < end:
-        time.sleep(quiet)
-        now = cpu_seconds(pid)
-        if now - last < 0.05:
-            return now
-        last = now
-    raise AssertionError("the server kept working")
-
-
 HEAVY = {"length": "1", "amplitude": "30deg", "step": "2e-6", "t_max": "20"}  # 10^7 steps of (3): the limit
 
 
-def test_abandoned_work_is_stopped():
-    with serve_in_child() as base:
-        httpx.get(base + "/api/simulate", params=HEAVY, timeout=120)  # warm
-        c0 = settle(base.pid)
-        assert httpx.get(base + "/api/simulate", params=HEAVY, timeout=120).status_code == 200
-        one = settle(base.pid) - c0  # CPU seconds of one whole request
+def until(condition, within: float = 120.0, every: float = 0.05) -> None:
+    """Wait until ``condition()`` (bounded: a server that never gets there fails the test)."""
+    end = time.monotonic() + within
+    while not condition():
+        assert time.monotonic() < end, "the server never got there"
+        time.sleep(every)
+
+
+def settled(within: float = 120.0, quiet: float = 1.0) -> int:
+    """The pieces run in this process once no piece has run for ``quiet`` seconds."""
+    end = time.monotonic() + within
+    last = interrupt.pieces_run.value
+    while True:
+        time.sleep(quiet)
+        now = interrupt.pieces_run.value
+        if now == last:
+            return now
+        assert time.monotonic() < end, "the server kept working"
+        last = now
+
+
+def test_abandoned_work_is_stopped(monkeypatch):
+    """Clients that leave once their work has begun: the running requests stop at their next
+    piece and the queued ones never start. Shown by the pieces run (a count of what the
+    server did), in pieces of 10^5 steps: a whole request runs 100."""
+    monkeypatch.setattr(sampling, "CHUNK_COST", 100_000)
+    with uvicorn_in_thread() as port:
+        base = f"http://127.0.0.1:{port}"
+        assert httpx.get(base + "/api/simulate", params=HEAVY, timeout=300).status_code == 200  # warm
+        before = settled()
+        assert httpx.get(base + "/api/simulate", params=HEAVY, timeout=300).status_code == 200
+        whole = settled() - before
+        assert whole >= 100
         n = 3 * limits.SIMULATION_SLOTS
-
-        def abandon() -> None:
-            with contextlib.suppress(httpx.TimeoutException):
-                httpx.get(base + "/api/simulate", params=HEAVY, timeout=0.3)
-
-        threads = [threading.Thread(target=abandon) for _ in range(n)]
-        for t in threads:
-            t.start()
-        for t in threads:
-            t.join()
+        start = interrupt.pieces_run.value
+        request = (f"GET /api/simulate?{urlencode(HEAVY)} HTTP/1.1\r\nHost: 127.0.0.1:{port}\r\n\r\n").encode()
+        clients = [half_request(port, request) for _ in range(n)]
+        until(lambda: interrupt.pieces_run.value > start)  # the work has begun
+        for c in clients:
+            c.close()
+        spent = settled() - start
+        # Run to the end they would cost n * whole; stopped, the running ones (one per slot)
+        # cost the pieces before the server saw them leave, the queued ones nothing.
+        assert spent < n * whole / 3, (spent, whole, n)
         assert httpx.get(base + "/api/config", timeout=10).status_code == 200
-        spent = settle(base.pid) - c0 - one
-        # Run to the end they would cost n * one; stopped, the running ones cost their
-        # first 0.3 s and a chunk, the queued ones nothing.
-        assert spent < n * one / 3, (spent, one, n)
 
 
 def test_the_streamed_pass_stops_between_pieces(monkeypatch):

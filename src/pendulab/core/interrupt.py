@@ -165,6 +165,23 @@ def stopping() -> None:
         raise Stopped
 
 
+class Tally:
+    """A count that threads add to (the pieces run in this process): what a test reads to
+    show that work stopped, by what it did rather than by the time it took."""
+
+    def __init__(self) -> None:
+        self._lock = threading.Lock()
+        self.value = 0
+
+    def add(self, n: int = 1) -> None:
+        with self._lock:
+            self.value += n
+
+
+#: Pieces of kernel work run by :func:`run_pieces` in this process, every thread together.
+pieces_run = Tally()
+
+
 def run_pieces(bounds: Iterable[tuple[int, int]], run: Callable[[int, int], bool]) -> None:
     """Call ``run(lo, hi)`` for each piece, under :func:`deferred`: a signal stops the loop
     between two pieces (one piece's time at most) and is raised then. ``run`` returns True
@@ -173,5 +190,9 @@ def run_pieces(bounds: Iterable[tuple[int, int]], run: Callable[[int, int], bool
     with deferred() as got:
         for lo, hi in bounds:
             stopping()
-            if got or run(lo, hi):
+            if got:
+                return
+            finished = run(lo, hi)
+            pieces_run.add()
+            if finished:
                 return
