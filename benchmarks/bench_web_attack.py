@@ -18,12 +18,15 @@ from __future__ import annotations
 import contextlib
 import socket
 import statistics
+import sys
 import threading
 import time
+from pathlib import Path
 
 import httpx
 
-from pendulab.web.child import serve_in_child
+sys.path.insert(0, str(Path(__file__).resolve().parent.parent / "tests"))
+from served import serve_in_child
 
 LIGHT = "/api/period?length=1&amplitude=30deg"
 AIM_MS = 250.0

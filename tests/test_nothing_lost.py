@@ -271,7 +271,7 @@ def test_serve_starts_without_a_terminal():
     """``pendulab serve >&- 2>&- <&-``: the explorer answers."""
     import urllib.request
 
-    from pendulab.web.child import free_port
+    from served import free_port
 
     port = free_port()
     proc = subprocess.Popen([sys.executable, "-m", "pendulab", "serve", "--port", str(port)],

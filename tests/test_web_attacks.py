@@ -17,7 +17,7 @@ from hypothesis import strategies as st
 
 from pendulab.core import interrupt
 from pendulab.web import create_app, guard, server
-from pendulab.web.child import serve_in_child
+from served import serve_in_child
 from test_web_server import closed_by_server, half_request, uvicorn_in_thread
 
 
@@ -93,7 +93,7 @@ def test_a_body_that_trickles_past_the_body_timeout_is_closed():
 
     import uvicorn
 
-    from pendulab.web.child import free_port
+    from served import free_port
 
     port = free_port()
     config = uvicorn.Config(_Reads(), host="127.0.0.1", port=port, loop="asyncio", log_level="warning",
