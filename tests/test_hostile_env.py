@@ -271,7 +271,7 @@ def test_a_full_disk_on_stdout_is_one_line():
 
 
 @pytest.mark.slow
-def test_a_closed_pipe_on_stdout_is_one_line():
+def test_a_closed_pipe_on_stdout_ends_silently():
     r, w = os.pipe()
     os.close(r)  # the reader has gone (``pendulab simulate | head -1``)
     try:
@@ -279,7 +279,7 @@ def test_a_closed_pipe_on_stdout_is_one_line():
     finally:
         os.close(w)
     assert res.returncode == 141
-    assert res.stderr.splitlines() == ["pendulab simulate: error: cannot write to standard output: Broken pipe"]
+    assert res.stderr == ""  # no "Broken pipe": the reader has gone because it has all it wanted
 
 
 # --- Finding 12: a read-only install, a corrupt cache, SOURCE_DATE_EPOCH ------------------------------

@@ -275,7 +275,7 @@ def test_trajectory_csv_is_the_full_trajectory(client):
     assert r.status_code == 200 and r.headers["content-type"].startswith("text/csv")
     assert "attachment" in r.headers["content-disposition"] and ".csv" in r.headers["content-disposition"]
     lines = r.text.splitlines()
-    assert lines[0] == "t_s,theta_rad,omega_rad_per_s"
+    assert lines[0] == "t,theta,omega"
     rows = np.array([[float(x) for x in line.split(",")] for line in lines[1:]])
     assert rows.shape == (22, 3)
     for t_ref, (z1, z2) in FIGURE3.items():
@@ -614,8 +614,8 @@ def test_period_curve_is_the_period_ratio_and_the_formulas(client):
 def test_csv_with_every_column(client):
     q = {"length": "1", "amplitude": "pi/4", "step": "0.1", "t_max": "2.1", "columns": "all"}
     lines = client.get("/api/trajectory.csv", params=q).text.splitlines()
-    assert lines[0].split(",") == ["t_s", "theta_rad", "omega_rad_per_s", "theta_exact_rad", "omega_exact_rad_per_s",
-                                   "theta_error_rad", "energy_error_mgl"]
+    assert lines[0].split(",") == ["t", "theta", "omega", "theta_exact", "omega_exact", "theta_error",
+                                   "energy_error"]
     full = simulation.simulate(1, math.pi / 4, 0.1, 2.1)
     rows = np.array([[float(x) for x in line.split(",")] for line in lines[1:]])
     assert np.array_equal(rows[:, 1], full.theta) and np.array_equal(rows[:, 2], full.omega)

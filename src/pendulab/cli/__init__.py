@@ -6,6 +6,7 @@ Subcommands live in small modules loaded on demand, so ``pendulab --help`` and
 from __future__ import annotations
 
 import contextlib
+import difflib
 import errno
 import importlib
 import os
@@ -23,6 +24,7 @@ from ..core.interrupt import signal_of
 from ..core.streams import WriteError
 from ..core.version import __version__
 from ._common import TYPED, one_line, option_name
+from .examples import epilog
 
 # command name -> "module:function", relative to this package.
 COMMANDS = {
@@ -93,6 +95,19 @@ class LazyGroup(click.Group):
     def get_command(self, ctx: click.Context, name: str) -> click.Command | None:
         return self._load(name)
 
+    def resolve_command(self, ctx: click.Context, args: list[str]) -> tuple[str | None, click.Command | None, list[str]]:
+        """The subcommand, a suggestion where its name is misspelt, and its arguments with
+        every list option's values joined: ``--step 1e-2 1e-3`` is ``--step 1e-2,1e-3``."""
+        name = click.utils.make_str(args[0])
+        cmd = self._load(name)
+        if cmd is None and not ctx.resilient_parsing and not name.startswith("-"):
+            close = difflib.get_close_matches(name, list(COMMANDS), n=3, cutoff=0.6)
+            hint = f" Did you mean {' or '.join(close)}?" if close else ""
+            ctx.fail(f"No such command {name!r}.{hint} (pendulab --help lists them.)")
+        if cmd is None:
+            return super().resolve_command(ctx, args)
+        return name, cmd, join_lists(cmd, args[1:])
+
     def invoke(self, ctx: click.Context):
         try:
             return super().invoke(ctx)
@@ -106,6 +121,13 @@ class LazyGroup(click.Group):
 
     @staticmethod
     def _load(name: str) -> click.Command | None:
+        cmd = LazyGroup._import(name)
+        if cmd is not None and cmd.epilog is None:
+            cmd.epilog = epilog(name)  # examples.EXAMPLES: shown at the end of its --help
+        return cmd
+
+    @staticmethod
+    def _import(name: str) -> click.Command | None:
         target = COMMANDS.get(name)
         if target is None:
             return None
@@ -127,6 +149,46 @@ def cli() -> None:
     Periods by the arithmetic-geometric mean, the coursework's Taylor simulation, the
     period recovered from a simulation, the coursework's five problems and its report.
     """
+
+
+#: The parameter types whose value is a list (``1e-2,1e-3``): after their option, the values
+#: up to the next option may also be given as separate words.
+LIST_TYPES = ("list", "methods")
+#: A word that is a negative number (``-1``, ``-.5``), not an option: a list's (bad) item.
+_NUMBER = re.compile(r"-\.?[0-9]")
+
+
+def join_lists(cmd: click.Command, args: list[str]) -> list[str]:
+    """``args`` with the words after a list option, up to the next option, joined by commas.
+
+    ``estimate --step 1e-2 1e-3`` becomes ``estimate --step 1e-2,1e-3``: one list syntax
+    (commas or spaces) for every list option, as ``report --students 1234 5678`` takes it.
+    A word starting with ``-`` ends the list, unless it is a number (``-1``: an item, refused
+    by the list's parser with the option's name).
+    """
+    flags = {opt for p in cmd.params if isinstance(p, click.Option) and getattr(p.type, "name", "") in LIST_TYPES
+             for opt in p.opts}
+    out: list[str] = []
+    i = 0
+    while i < len(args):
+        word = args[i]
+        out.append(word)
+        i += 1
+        if word == "--":
+            out += args[i:]
+            break
+        if (word in flags and i < len(args)) or (word.partition("=")[0] in flags and "=" in word):
+            values = [] if "=" in word else [args[i]]  # the option's value, whatever it is (as click takes it)
+            i += 0 if "=" in word else 1
+            while (i < len(args) and (not args[i].startswith("-") or _NUMBER.match(args[i]))
+                   and not (values and values[0].startswith("-"))):
+                values.append(args[i])
+                i += 1
+            if "=" in word:
+                out[-1] = ",".join([word, *values])
+            elif values:
+                out.append(",".join(values))
+    return out
 
 
 class Stopped(Exception):
@@ -281,10 +343,14 @@ def _disk_error(exc: OSError) -> str:
 
 
 def _stdout_error(where: str, code: int | None, reason: str) -> int:
-    """One line for standard output that cannot be written: exit 1 (141, SIGPIPE's, for a closed pipe)."""
+    """One line for standard output that cannot be written (a full disk): exit 1. A closed
+    pipe (``pendulab period | head -1``: the reader has all it wanted) ends silently with
+    141, SIGPIPE's status, as ``cat`` or ``seq`` do."""
+    if code == errno.EPIPE:
+        return 141
     with contextlib.suppress(OSError, ValueError):
         click.echo(f"{where}: error: cannot write to standard output: {reason}", err=True)
-    return 141 if code == errno.EPIPE else 1
+    return 1
 
 
 class CliError(click.ClickException):

@@ -109,7 +109,7 @@ def json_option(f: Callable) -> Callable:
 
 def g_option(f: Callable) -> Callable:
     return click.option(
-        "--g", "g", type=POSITIVE, default=G_TEXT, show_default=True, help="Gravitational acceleration, m/s^2."
+        "-g", "--g", "g", type=POSITIVE, default=G_TEXT, show_default=True, help="Gravitational acceleration, m/s^2."
     )(f)
 
 

@@ -97,9 +97,9 @@ def approximations(plot, as_json):
 @click.option("-a", "--amplitude", "amplitudes", type=ANGLE_RANGE, default="1deg:179deg:1000", show_default=True,
               help="Amplitudes START:STOP:COUNT (both ends included), e.g. 1deg:179deg:1000.")
 @click.option("--step", "steps", type=DURATION_LIST, default="1e-3,1e-4", show_default=True,
-              help="Steps h, comma-separated.")
+              help="Steps h, s, separated by commas or spaces.")
 @click.option("--method", "methods", type=METHOD_LIST, default="taylor2,rk4,verlet", show_default=True,
-              help="Integrators, comma-separated: taylor2, rk4, verlet, taylor:P.")
+              help="Integrators, separated by commas or spaces: taylor2, rk4, verlet, taylor:P.")
 @click.option("-l", "--length", type=LENGTH, default="1", show_default=True, help="Pendulum length l, m: 1, 75cm.")
 @click.option("--output", "-o", type=output(".csv", ".parquet"), help="Write every pendulum's row to this .csv or .parquet.")
 @click.option("--plot", type=FIGURE, help="Write |period error| against amplitude to this PNG/SVG/PDF.")

@@ -49,47 +49,64 @@ def _method_option(f):
 @click.option("-l", "--length", type=LENGTH, default=PROBLEM5.length.text, show_default=True, help=_LENGTH_HELP)
 @click.option("-a", "--amplitude", type=EXACT_ANGLE, default=PROBLEM5.amplitude.text, show_default=True,
               help=_ANGLE_HELP + " Taken exactly: 0.9999999999999999999999999pi is below pi.")
-@click.option("--iterations", type=integer(0, 1000), default=None,
-              help="Fixed AGM iterations (7: the coursework's T^ of (8)); default: to convergence.")
-@click.option("--digits", type=integer(1, 10000), default=None,
-              help="Print the periods to this many significant digits, each proved by ball arithmetic (Arb); default 15.")
+@click.option("--iterations", type=integer(0, 1000), default=None, show_default="to convergence",
+              help="Also (8) after this many AGM iterations on doubles (7: the coursework's T^).")
+@click.option("--digits", type=integer(1, 10000), default=None, show_default="15; none in --json",
+              help="Significant digits of the periods as written, each proved by ball arithmetic (Arb).")
 @g_option
 @json_option
 def period(length, amplitude, iterations, digits, g, as_json):
     """The period by the arithmetic-geometric mean, equations (7)-(8).
 
-    The digits printed are those of the true period of the inputs as written, correctly
-    rounded and proved by ball arithmetic (Arb). --json gives as well "period", the double
-    nearest to the period (8) of the inputs' doubles (null, with "period_note", where the
-    amplitude's double is not below pi), "period_as_written", the double nearest to the
-    true period of the inputs as written, and with --iterations N "period_iterated", (8)
-    after N iterations on doubles (N = 7: the coursework's T^).
+    The digits printed are those of the period of the inputs as written (period_as_written),
+    correctly rounded and proved by ball arithmetic (Arb). Where the inputs' doubles have
+    another period (an amplitude near 180 deg: 0.9999999pi), a second line gives "period",
+    the double nearest to the period (8) of the inputs' doubles, which agm_period() returns;
+    --json carries both, and with --iterations N "period_iterated", (8) after N iterations on
+    doubles (N = 7: the coursework's T^).
     """
-    import math
+    from ..numerics.period import periods
 
-    from ..core.exact import Exact
-    from ..numerics.period import agm_period, period_digits
-
-    # Where the amplitude is below pi but its double is not, (8) on doubles has no value.
-    on_doubles = float(amplitude) < math.pi
-    if as_json:  # the double (8) and the period as written are computed where they are shown
-        from ..numerics.period import periods
-
-        r = periods(length, amplitude, g, iterations, digits)
+    r = periods(length, amplitude, g, iterations, digits if as_json else digits or 15)
+    if as_json:
         note = {} if r.amplitude_double_below_pi else {"period_note": _period_note(r.amplitude_text)}
         emit_json(r.to_dict() | note)
         return
-    d = digits or 15
-    text = period_digits(length, amplitude, g, d)
-    click.echo(f"{'period, AGM (7)-(8)':34}T  = {text} s")
-    click.echo(f"{'small-angle period 2 pi sqrt(l/g)':34}T0 = {period_digits(length, Exact.of(0), g, d)} s")
-    if iterations is not None:
-        label = f"(8) after {iterations} iterations, double"
-        if on_doubles:
-            t = agm_period(float(length), float(amplitude), float(g), iterations=iterations)
-            click.echo(f"{label:34}T^ = {t!r} s")
+    lines = _period_lines(r.to_dict())
+    width = max(34, *(len(label) + 1 for label, _ in lines))
+    for label, text in lines:
+        click.echo(f"{label:{width}}{text}")
+
+
+def _period_lines(d: dict) -> list[tuple[str, str]]:
+    """The text of ``pendulab period``: each period of :class:`~pendulab.numerics.period.Periods`
+    under its glossary name; ``period`` beside ``period_as_written`` only where they differ in
+    the digits printed."""
+    digits = f"{d['period_digits']} s"
+    count = len(d["period_digits"].partition("e")[0].replace(".", "").lstrip("0"))
+    if d["period"] is not None and _same_digits(d["period"], d["period_as_written"], count):
+        lines = [("period, AGM (7)-(8)", f"T  = {digits}")]
+    else:
+        lines = [("period_as_written, AGM (7)-(8)", f"T  = {digits}  (amplitude {d['amplitude_text']} as typed)")]
+        if d["period"] is None:
+            lines.append(("period (the doubles), AGM (7)-(8)", f"T  undefined: {_period_note(d['amplitude_text'])}"))
         else:
-            click.echo(f"{label:34}T^ undefined: {_period_note(amplitude.text)}")
+            lines.append(("period (the doubles), AGM (7)-(8)",
+                          f"T  = {d['period']!r} s  (its double, {d['amplitude']!r}; as agm_period())"))
+    lines.append(("small-angle period 2 pi sqrt(l/g)", f"T0 = {d['small_angle_period_digits']} s"))
+    if d["iterations"] is not None:
+        label = f"(8) after {d['iterations']} iterations, double"
+        if d["period_iterated"] is None:
+            lines.append((label, f"T^ undefined: {_period_note(d['amplitude_text'])}"))
+        else:
+            lines.append((label, f"T^ = {d['period_iterated']!r} s"))
+    return lines
+
+
+def _same_digits(a: float, b: float, digits: int) -> bool:
+    """Whether ``a`` and ``b`` print as the same number to ``digits`` significant digits
+    (beyond 17 digits, whether they are the same double)."""
+    return a == b if digits >= 17 else f"{a:.{digits - 1}e}" == f"{b:.{digits - 1}e}"
 
 
 def _period_note(amplitude_text: str) -> str:
@@ -112,7 +129,7 @@ def _period_note(amplitude_text: str) -> str:
 @g_option
 @json_option
 def simulate(length, amplitude, step, t_max, t0, digits, as_csv, plot, phase, method, g, as_json):
-    """Simulate the pendulum by the Taylor algorithm (3): the table t, z1, z2."""
+    """Simulate the pendulum by the Taylor algorithm (3): the table t (s), theta = z1 (rad), omega = z2 (rad/s)."""
     from ..core import validate as v
     from ..numerics.simulation import simulate as run
 
@@ -133,7 +150,7 @@ def simulate(length, amplitude, step, t_max, t0, digits, as_csv, plot, phase, me
         click.echo("\n".join(lines))
     else:
         w = digits + 8
-        lines = [f"{'t_i':>{w}} {'z1_i':>{w}} {'z2_i':>{w}}"]
+        lines = [f"{'t':>{w}} {'theta':>{w}} {'omega':>{w}}"]  # the CSV's and to_frame()'s names
         lines += [f"{fmt(a, digits):>{w}} {fmt(b, digits):>{w}} {fmt(c, digits):>{w}}"
                   for a, b, c in zip(tr.t.tolist(), tr.theta.tolist(), tr.omega.tolist())]
         click.echo("\n".join(lines))
@@ -146,13 +163,13 @@ def _plots():
 
 
 @click.command()
-@click.option("-l", "--length", type=LENGTH, default=None,
-              help="Pendulum length l, m. Default: the example group's, 2.0800838231.")
+@click.option("-l", "--length", type=LENGTH, default=None, show_default="2.0800838231, the example group's",
+              help="Pendulum length l, m (> 0): 2.08, 75cm, 750mm.")
 @click.option("-a", "--amplitude", type=ANGLE, default=PROBLEM3_AMPLITUDE.text, show_default=True, help=_ANGLE_HELP)
 @click.option("--step", "steps", type=DURATION_LIST, default=",".join(f"{s:g}" for s in PROBLEM3_STEPS),
-              show_default=True, help="Comma-separated steps h.")
-@click.option("--t-max", "t_max", type=INSTANT, default=None,
-              help="End of the simulation; default 1.5 T + 4h from the AGM period (8).")
+              show_default=True, help="Steps h, s, separated by commas or spaces: 1e-2,1e-3 or 1e-2 1e-3.")
+@click.option("--t-max", "t_max", type=INSTANT, default=None, show_default="1.5 T + 4h, T the AGM period (8)",
+              help="End of the simulation, s.")
 @_method_option
 @click.option("--dense", is_flag=True,
               help="Add the period from dense output (the zero of theta' on the flow's Taylor series): "
@@ -176,7 +193,7 @@ def estimate(length, amplitude, steps, t_max, method, dense, g, as_json):
     if dense:
         head += f" {'dense output':>18} {'|dense - T|':>12}"
     click.echo(head)
-    below = False
+    below = outside = False
     for e, co in zip(rows, r.cubic_orders):
         br = f"[{e.bracket[0]:.10g}, {e.bracket[1]:.10g}]"
         order = f"{co:6.2f}" if co is not None else f"{'':>6}"
@@ -184,13 +201,19 @@ def estimate(length, amplitude, steps, t_max, method, dense, g, as_json):
         est = f"{e.cubic_error_estimate:.3e}"
         if not e.interpolation.error_estimate_resolved:
             est, below = f"<{e.interpolation.rounding_level:.1e}*", True
-        line = (f"{e.step:>8g} {br:>25} {e.linear:>18.15g} {e.cubic:>18.15g} {est:>17} "
+        cubic = f"{e.cubic:.15g}"
+        if not e.cubic_in_bracket:  # no estimate of the period: flagged, not hidden
+            cubic, outside = cubic + "!", True
+        line = (f"{e.step:>8g} {br:>25} {e.linear:>18.15g} {cubic:>18} {est:>17} "
                 f"{e.linear_error:>12.3e} {e.cubic_error:>12.3e} {order}")
         if dense:
             line += f" {e.dense:>18.15g} {e.dense_error:>12.3e}"
         click.echo(line)
     if below:
         click.echo("* below the rounding level of t_k = k h: the estimate there is rounding, not interpolation error")
+    if outside:
+        click.echo("! outside its bracket [t_j, t_j+1], where theta' changes sign: the step is too large for this "
+                   "amplitude and the cubic estimates nothing (--json: cubic_in_bracket false)")
 
 
 @click.command()

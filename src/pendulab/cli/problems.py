@@ -82,7 +82,7 @@ def gravity(length, length_error, period, period_error, as_json):
     if as_json:
         emit_json(r.to_dict() | {"rule": rule, "abs_error_formula": abs_formula, "rel_error_formula": rel_formula})
         return
-    click.echo(f"l = {r.length!r} +- {r.length_error!r} m,  T = {r.period!r} +- {r.period_error!r} s")
+    click.echo(f"l = {r.length!r} +- {r.length_error!r} m,  T = {r.measured_period!r} +- {r.measured_period_error!r} s")
     click.echo(f"g = 4 pi^2 l / T^2          = {r.g!r} m/s^2")
     click.echo(f"absolute error (1st order)  {abs_formula}  = {r.abs_error:.6e} m/s^2")
     click.echo(f"relative error (1st order)  {rel_formula}  = {r.rel_error:.6e}")
@@ -97,9 +97,8 @@ def gravity(length, length_error, period, period_error, as_json):
               help="Pendulum length l, m: 0.5, 50cm.")
 @click.option("--target", type=DURATION, default=str(cases.NEWTON_TARGET), show_default=True,
               help="Target period of approximation (9), s.")
-@click.option("--x0", type=X0, default=None,
-              help="Starting value in (0, pi): 1, pi/3, 60deg. Default: the end of the convergence interval "
-                   "where f f'' > 0.")
+@click.option("--x0", type=X0, default=None, show_default="the end of the convergence interval where f f'' > 0",
+              help="Starting value in (0, pi): 1, pi/3, 60deg.")
 @g_option
 @json_option
 def newton(length, target, x0, g, as_json):
@@ -150,7 +149,8 @@ def condition_text(c: Condition) -> str:
 @click.option("-a", "--amplitude", type=ANGLE, default=cases.PROBLEM4.amplitude.text, show_default=True,
               help="Amplitude alpha in [0, pi): 0.785, pi/4, 45deg.")
 @click.option("--step", type=DURATION, default=str(cases.PROBLEM4_STEP), show_default=True, help="Taylor step h, s (or 10ms).")
-@click.option("--t-max", "t_max", type=DURATION, default=None, help="End of the data; default ceil(T) with T from (8).")
+@click.option("--t-max", "t_max", type=DURATION, default=None, show_default="ceil(T^), T^ of (8)",
+              help="End of the data, s.")
 @click.option("--round", "decimals", type=ROUND, default=str(cases.PROBLEM4_ROUND), show_default=True,
               help="Round the normal equations half away from zero to this many decimals (0..15, or none).")
 @click.option("--plot", type=FIGURE, help="Write the data and the fitted phi to this PNG/SVG/PDF.")
@@ -208,7 +208,7 @@ def fit(length, amplitude, step, t_max, decimals, plot, g, as_json):
 @click.option("-a", "--amplitude", type=ANGLE, default=cases.PROBLEM5.amplitude.text, show_default=True,
               help="Amplitude alpha in [0, pi): 4pi/5, 144deg.")
 @click.option("--n", "ns", type=COUNTS, default=",".join(map(str, (1, *cases.PROBLEM5_N))), show_default=True,
-              help="Comma-separated numbers of subintervals.")
+              help="Numbers of subintervals, separated by commas or spaces: 1,10,100 or 1 10 100.")
 @click.option("--substitution", is_flag=True,
               help="Also integrate after sin(theta/2) = sin(alpha/2) sin(phi), which removes the singularity.")
 @click.option("--graded", is_flag=True,

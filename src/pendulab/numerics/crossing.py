@@ -99,6 +99,12 @@ class PeriodEstimate(Result):
         return abs(self.cubic - self.period)
 
     @property
+    def cubic_in_bracket(self) -> bool:
+        """Whether ``cubic`` lies in ``bracket``, where the zero of ``theta'`` lies: outside it
+        (a step too large for the amplitude) the cubic is no estimate of the period."""
+        return self.bracket[0] <= self.cubic <= self.bracket[1]
+
+    @property
     def cubic_error_estimate_rounding_level(self) -> float:
         """How far the rounding of ``t_k = k h`` alone moves ``cubic_error_estimate``
         (``interpolation.rounding_level``): an estimate below it is rounding."""

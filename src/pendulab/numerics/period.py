@@ -546,6 +546,8 @@ class Periods(Result):
     period_digits : str or None
         The period of the inputs as written to the ``digits`` asked for, every digit proved
         (:func:`period_digits`); ``None`` where no digits were asked for.
+    small_angle_period_digits : str or None
+        ``2 pi sqrt(l/g)`` of the inputs as written to the same digits, every digit proved.
     """
 
     length: float
@@ -558,6 +560,7 @@ class Periods(Result):
     small_angle_period: float
     period_iterated: float | None
     period_digits: str | None
+    small_angle_period_digits: str | None
 
     @property
     def amplitude_double_below_pi(self) -> bool:
@@ -578,10 +581,13 @@ def periods(length: float | str | Exact, amplitude: float | str | Exact, g: floa
         g=gf,
         amplitude_text=str(a_),
         iterations=iterations,
-        period=agm_period(lf, af, gf) if on_doubles else None,
+        # agm_period's value (the double nearest to the period of the doubles), by Arb as the
+        # others: no mpmath to load for one pendulum (the command line, the page).
+        period=period_double(lf, af, gf) if on_doubles else None,
         period_as_written=period_double(l_, a_, g_),
         small_angle_period=small_angle_period(lf, gf),
         period_iterated=(agm_period(lf, af, gf, iterations=iterations)
                          if on_doubles and iterations is not None else None),
         period_digits=None if digits is None else period_digits(l_, a_, g_, digits),
+        small_angle_period_digits=None if digits is None else period_digits(l_, Exact.of(0), g_, digits),
     )

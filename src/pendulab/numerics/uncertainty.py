@@ -123,8 +123,8 @@ class GravityEstimate(Result):
     ----------
     length, length_error : float
         ``l`` and its absolute error bound, m.
-    period, period_error : float
-        ``T`` and its absolute error bound, s.
+    measured_period, measured_period_error : float
+        The measured ``T`` and its absolute error bound, s (glossary: not ``period``, the AGM's).
     g : float
         ``4 pi^2 l / T^2``, m/s^2.
     abs_error, rel_error : float
@@ -145,8 +145,8 @@ class GravityEstimate(Result):
 
     length: float
     length_error: float
-    period: float
-    period_error: float
+    measured_period: float
+    measured_period_error: float
     g: float
     abs_error: float
     rel_error: float
@@ -209,8 +209,8 @@ def gravity_estimate(length: float, length_error: float, period: float, period_e
     return GravityEstimate(
         length=length,
         length_error=length_error,
-        period=period,
-        period_error=period_error,
+        measured_period=period,
+        measured_period_error=period_error,
         g=g,
         abs_error=abs_err,
         rel_error=rel_err,

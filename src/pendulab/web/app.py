@@ -281,8 +281,8 @@ def create_app(allowed_hosts: Iterable[str] = guard.LOCAL_HOSTS) -> FastAPI:
         return JSONResponse(views.period_curve_view())
 
     csv: dict[int | str, dict[str, Any]] = {200: {"content": {"text/csv": {"schema": {"type": "string"}}},
-                 "description": "t_s,theta_rad,omega_rad_per_s (columns=all: and theta_exact_rad, "
-                 "omega_exact_rad_per_s, theta_error_rad, energy_error_mgl): one row per kept step, full precision"}}
+                 "description": "t,theta,omega in s, rad, rad/s (columns=all: and theta_exact, omega_exact, "
+                 "theta_error in rad, rad/s, rad and energy_error in m g l): one row per kept step, full precision"}}
 
     @app.get("/api/trajectory.csv", response_class=StreamingResponse, responses=csv | bad)
     async def trajectory_csv(length: Length = None, amplitude: Amplitude = None, unit: Unit = None,

@@ -33,10 +33,10 @@ DEFAULTS = {
 }
 
 ALLOWED = {
-    "length": "a finite number > 0 (m), such as 3.5",
+    "length": "a finite number > 0 (m), such as 3.5 or 75cm",
     "amplitude": "an angle in [0, pi) rad, such as 0.785, pi/4, 4pi/5 or 45deg",
-    "step": "a finite number > 0 (s), such as 1e-3",
-    "t_max": "a finite number > 0 (s), such as 20",
+    "step": "a finite number > 0 (s), such as 1e-3 or 1ms",
+    "t_max": "a finite number > 0 (s), such as 20 or 20s",
     "g": f"a finite number > 0 (m/s^2), such as {G_TEXT}",
     "unit": "rad or deg: the unit of a plain-number amplitude",
     "omega0": "a finite number (rad/s), such as 2 or -1.5: the angular velocity at t = 0",
@@ -58,8 +58,16 @@ def text(params: Mapping[str, str], name: str, default: str | None = None) -> st
 
 
 def positive(params: Mapping[str, str], name: str, default: str | None = None) -> float:
-    """A number > 0 by :func:`pendulab.core.inputs.positive`, the CLI's parser."""
+    """A number > 0 by :func:`pendulab.core.inputs.positive`, the CLI's parser; a length or a
+    time may carry its unit as on the command line (``75cm``, ``10ms``), in m or s."""
+    unit = _WITH_UNIT.get(name)
+    if unit is not None:
+        return float(unit(name, text(params, name, default)))
     return float(inputs.positive(name, text(params, name, default), ALLOWED[name]))
+
+
+#: The fields that take a unit, and their parsers (the CLI's ``-l``, ``--step``, ``--t-max``).
+_WITH_UNIT = {"length": inputs.length, "step": inputs.duration, "t_max": inputs.duration}
 
 
 def amplitude(params: Mapping[str, str]) -> float:
@@ -129,7 +137,7 @@ def step_list(params: Mapping[str, str]) -> list[float]:
     parts = inputs.items("steps", s, allowed, max_items=10**6)
     if len(parts) > limits.MAX_SWEEP:
         raise InputError("steps", f"{len(parts)} values", allowed)
-    return [float(x) for x in inputs.parse_list("steps", s, inputs.positive, allowed, limits.MAX_SWEEP)]
+    return [float(x) for x in inputs.parse_list("steps", s, inputs.duration, allowed, limits.MAX_SWEEP)]
 
 
 def unusual(length: float, g: float) -> str:

@@ -40,8 +40,8 @@ ORBIT_POINTS = 257
 #: The CSV's header for each choice of ``columns``: the state, or also what the page plots
 #: (the exact motion, the global error theta - theta_exact, the energy error (E - E0)/(m g l)).
 CSV_COLUMNS = {
-    "state": "t_s,theta_rad,omega_rad_per_s",
-    "all": "t_s,theta_rad,omega_rad_per_s,theta_exact_rad,omega_exact_rad_per_s,theta_error_rad,energy_error_mgl",
+    "state": "t,theta,omega",
+    "all": "t,theta,omega,theta_exact,omega_exact,theta_error,energy_error",
 }
 
 
