@@ -94,7 +94,7 @@ def test_missing_extra_is_one_line(cli, monkeypatch, tmp_path, args, package, ex
     for name in [m for m in sys.modules if m == package or m.startswith(package + ".")] + [package]:
         monkeypatch.setitem(sys.modules, name, None)
     res = cli(*[a.format(tmp=tmp_path) for a in args])
-    assert_one_line_error(res, f"needs {package}, which is not installed", f"pip install 'pendulab[{extra}]'")
+    assert_one_line_error(res, f"needs {package}, which is not installed", "-m pip install -e '", f"[{extra}]'")
     assert list(tmp_path.iterdir()) == []  # refused before any work or output
 
 

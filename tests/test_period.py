@@ -157,7 +157,7 @@ def test_period_digits_takes_inputs_as_written_not_as_doubles():
     [
         ({"length": 0, "amplitude": 1}, "length"),
         ({"length": -1, "amplitude": 1}, "length"),
-        ({"length": float("nan"), "amplitude": 1}, "length"),
+        ({"length": float("inf"), "amplitude": 1}, "length"),
         ({"length": 1, "amplitude": math.pi}, "amplitude"),
         ({"length": 1, "amplitude": -0.1}, "amplitude"),
         ({"length": 1, "amplitude": float("inf")}, "amplitude"),

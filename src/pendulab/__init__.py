@@ -2,7 +2,7 @@
 
 The functions a notebook needs, importable from here::
 
-    from pendulab import agm_period, period_digits, simulate, estimate_period, problem1
+    from pendulab import agm_period, period_digits, simulate, estimate_period, problem1, to_frame
 
 Each name loads its module on first use (PEP 562), so ``import pendulab`` imports neither
 numpy, numba nor scipy, and the command line starts, and handles Ctrl+C, before they load.
@@ -24,6 +24,7 @@ if TYPE_CHECKING:
     from .numerics.group import group_length
     from .numerics.motion import exact_motion, global_error
     from .numerics.period import agm_period, period_digits, small_angle_period
+    from .numerics.results import to_frame
     from .numerics.simulation import simulate
 
 # name -> the module that defines it, imported on first use (PEP 562).
@@ -37,6 +38,7 @@ _WHERE = {
     "exact_motion": "numerics.motion",
     "global_error": "numerics.motion",
     "approximation_errors": "numerics.approximations",
+    "to_frame": "numerics.results",
     "problem1": "jobs.problems",
     "problem2": "jobs.problems",
     "problem3": "jobs.problems",
@@ -64,6 +66,8 @@ __all__ = [
     "problem5",
     "simulate",
     "small_angle_period",
+    "to_frame",
 ]
 
-__getattr__, __dir__ = lazy(__name__, _WHERE, __all__)
+__getattr__, __dir__ = lazy(__name__, _WHERE, __all__)  # dir(pendulab): __all__, the public names
+del lazy, TYPE_CHECKING, annotations

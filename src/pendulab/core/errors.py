@@ -36,16 +36,21 @@ class InputError(PendulabError, ValueError):
         The same limit stated for another argument (a step count too large blames
         ``step``; its alternative blames ``t_max``): the CLI blames that one instead when
         the person typed it and left this one at its default.
+    index : tuple of int, optional
+        Where ``value`` lies in an array argument: the first bad element
+        (``amplitude[3] = 4 is not allowed``).
     """
 
     def __init__(self, name: str, value: object, allowed: str, *, mentions: tuple[str, ...] = (),
-                 alternative: InputError | None = None):
+                 alternative: InputError | None = None, index: tuple[int, ...] | None = None):
         self.name = name
         self.value = value
         self.allowed = allowed
         self.mentions = mentions
         self.alternative = alternative
-        super().__init__(f"{name} = {shown_value(value)} is not allowed: must be {allowed}")
+        self.index = index
+        where = name if index is None else f"{name}[{', '.join(map(str, index))}]"
+        super().__init__(f"{where} = {shown_value(value)} is not allowed: must be {allowed}")
 
 
 def shown_value(value: object) -> str:

@@ -52,9 +52,34 @@ def require(module: str, purpose: str) -> ModuleType:
             raise
         extra = EXTRA_OF[top]
         raise MissingExtraError(
-            f"{purpose} needs {top}, which is not installed: pip install 'pendulab[{extra}]'",
+            f"{purpose} needs {top}, which is not installed: {install_command(extra)}",
             name=top,
         ) from exc
+
+
+def install_command(extra: str) -> str:
+    """The command that installs ``pendulab[extra]`` into the Python running this one, the way
+    this copy was installed: ``.venv/bin/python -m pip install -e '.[pandas]'`` for a clone
+    (its ``src/`` beside ``pyproject.toml``), ``pip install 'pendulab[pandas]'`` for a package."""
+    import os
+    from pathlib import Path
+
+    here = Path(__file__).resolve().parents[2]  # .../src (a clone) or .../site-packages
+    root = here.parent
+    if here.name != "src" or not (root / "pyproject.toml").is_file():
+        return f"pip install 'pendulab[{extra}]'"
+
+    def shown(path: Path) -> str:  # relative to the working folder where it lies inside it
+        try:
+            rel = os.path.relpath(path)
+        except ValueError:  # another drive
+            return str(path)
+        return rel if not rel.startswith("..") else str(path)
+
+    python = shown(Path(sys.executable)) if sys.executable else "python"
+    if "/" not in python and os.sep not in python:
+        python = sys.executable
+    return f"{python} -m pip install -e '{shown(root)}[{extra}]'"
 
 
 def _absent(package: str) -> bool:
@@ -76,7 +101,7 @@ def lazy(package: str, where: dict[str, str], names: list[str]) -> tuple[Callabl
             return value
         raise AttributeError(f"module {package!r} has no attribute {name!r}")
 
-    def dir_() -> list[str]:
-        return sorted(set(namespace) | set(names))
+    def dir_() -> list[str]:  # the public names only: not the module's helpers (TYPE_CHECKING, lazy)
+        return sorted(names)
 
     return getattr_, dir_

@@ -25,6 +25,7 @@ if TYPE_CHECKING:  # names for annotations; the modules load when a problem runs
     from ..numerics.lsq import LeastSquaresFit
     from ..numerics.newton import IntervalCheck, NewtonResult, PeriodEquation
     from ..numerics.quadrature import Rule
+    from ..numerics.uncertainty import GravityEstimate
 
 
 # --------------------------------------------------------------------------- problem 3
@@ -192,7 +193,7 @@ def problem1(
     length_error: float = cases.GRAVITY_LENGTH_ERROR,
     period: float = cases.GRAVITY_PERIOD,
     period_error: float = cases.GRAVITY_PERIOD_ERROR,
-):
+) -> GravityEstimate:
     """Problem 1: ``g = 4 pi^2 l/T^2`` from ``l = 115.2 cm``, ``T = 2.1536 s`` and its error.
 
     Returns the :class:`pendulab.numerics.uncertainty.GravityEstimate` (formulas of 1(a), bounds,

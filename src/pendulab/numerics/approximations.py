@@ -26,17 +26,21 @@ References
 from __future__ import annotations
 
 import math
-from collections.abc import Callable
+from collections.abc import Callable, Sequence
 from dataclasses import dataclass
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
 from ..core import validate as v
 from ..core.cases import G
 from ..core.errors import InputError
+from .arrays import elementwise
 from .period import agm_mean
 from .results import Result
+
+if TYPE_CHECKING:
+    from numpy.typing import ArrayLike
 
 _GANLEY_F = math.sqrt(3) / 2
 
@@ -159,7 +163,9 @@ class ApproximationErrors(Result):
         return float(self.amplitudes[first - 1]) if first > 0 else math.nan
 
 
-def approximation_errors(amplitudes: Any = None, names: Any = None) -> ApproximationErrors:
+@elementwise(amplitudes=0.0)
+def approximation_errors(amplitudes: ArrayLike | None = None,
+                         names: Sequence[str] | None = None) -> ApproximationErrors:
     """Relative error of each approximation against the AGM period over ``[0, pi)``.
 
     Parameters
@@ -172,7 +178,7 @@ def approximation_errors(amplitudes: Any = None, names: Any = None) -> Approxima
     """
     if amplitudes is None:
         amplitudes = np.radians(np.linspace(0.1, 179.9, 1000))
-    alpha = np.atleast_1d(np.asarray(v.amplitudes("amplitude", amplitudes), dtype=float))
+    alpha = np.atleast_1d(np.asarray(v.amplitudes("amplitudes", amplitudes), dtype=float))
     formulas = tuple(_formula(n) for n in (names if names is not None else FORMULAS))
     m = agm_mean(np.cos(alpha / 2))
     errors = {f.name: f.ratio(alpha) * m - 1 for f in formulas}

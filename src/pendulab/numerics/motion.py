@@ -45,13 +45,19 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass
 from fractions import Fraction
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
 from ..core import validate as v
 from ..core.cases import G
+from .arrays import elementwise
 from .results import Result
+
+if TYPE_CHECKING:
+    from numpy.typing import ArrayLike
+
+    from .simulation import Trajectory
 
 # AGM stopping rule: c_n <= eps a_n (the next phi correction is below rounding).
 _EPS = np.finfo(float).eps
@@ -220,7 +226,8 @@ class ExactMotion(Result):
         return {"t": self.t, "theta": self.theta, "omega": self.omega}
 
 
-def exact_motion(length: Any, amplitude: Any, t: Any, g: Any = G) -> ExactMotion:
+@elementwise(t=0.0)
+def exact_motion(length: float, amplitude: float, t: ArrayLike, g: float = G) -> ExactMotion:
     """The exact solution of (2) from rest at ``alpha``, at the times ``t`` (s).
 
     Parameters
@@ -230,7 +237,8 @@ def exact_motion(length: Any, amplitude: Any, t: Any, g: Any = G) -> ExactMotion
     amplitude : float
         ``alpha`` in ``[0, pi)``, rad.
     t : float or array_like
-        Times (s), any finite values.
+        Times (s), any finite values; NaN gives NaN in ``theta`` and ``theta'`` (a missing
+        time), a scalar gives floats.
     g : float
         m/s^2.
 
@@ -343,7 +351,7 @@ class GlobalError(Result):
                 "energy_drift": self.energy_drift}
 
 
-def global_error(trajectory) -> GlobalError:
+def global_error(trajectory: Trajectory) -> GlobalError:
     """Compare a :class:`pendulab.numerics.simulation.Trajectory` with the exact motion.
 
     The simulation starts at rest at ``t0``; the exact motion is evaluated at ``t - t0``.

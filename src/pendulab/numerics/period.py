@@ -23,6 +23,7 @@ from ..core.cases import G_EXACT, G
 from ..core.exact import Exact, arb_precision, below_pi
 from ..core.interrupt import deferred
 from ..engine.mean import FIXED, MAX_ITERATIONS, RTOL, agm
+from .arrays import elementwise
 from .results import Result
 
 if TYPE_CHECKING:  # numpy loads only where arrays are handled
@@ -80,6 +81,7 @@ def _is_scalar(x: Any) -> TypeGuard[SupportsFloat]:
 def small_angle_period(length: float | Exact, g: float | Exact = G) -> float: ...
 @overload
 def small_angle_period(length: ArrayLike, g: float | Exact = G) -> NDArray[np.float64]: ...
+@elementwise(length=1.0)
 def small_angle_period(length: float | Exact | ArrayLike, g: float | Exact = G) -> float | NDArray[np.float64]:
     """Small-angle period ``2 pi sqrt(l/g)`` (problem 1). Vectorised over ``length``.
 
@@ -197,6 +199,7 @@ def agm_period(length: float | Exact, amplitude: float | Exact, g: float | Exact
 @overload
 def agm_period(length: ArrayLike, amplitude: ArrayLike, g: float | Exact = G,
                iterations: int | None = None) -> NDArray[np.float64]: ...
+@elementwise(length=1.0, amplitude=0.0)
 def agm_period(length: float | Exact | ArrayLike, amplitude: float | Exact | ArrayLike, g: float | Exact = G,
                iterations: int | None = None) -> float | NDArray[np.float64]:
     """The period by the arithmetic-geometric mean, equations (7)-(8).

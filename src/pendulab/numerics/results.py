@@ -26,6 +26,7 @@ from typing import TYPE_CHECKING, Any
 
 if TYPE_CHECKING:
     import numpy as np
+    import pandas as pd
 
 __all__ = ["Result", "to_frame"]
 
@@ -97,7 +98,7 @@ class Result:
         fields = {f.name: _plain(getattr(self, f.name)) for f in dataclasses.fields(self)}  # type: ignore[arg-type]
         return fields | self.derived()
 
-    def to_frame(self) -> Any:
+    def to_frame(self) -> pd.DataFrame:
         """A pandas ``DataFrame``: the result's table, or one row of its scalar fields."""
         pd = _pandas()
         columns = self._columns()
@@ -143,7 +144,7 @@ class Result:
         return f"<table><caption>{type(self).__name__}</caption>{rows}</table>"
 
 
-def to_frame(results: Iterable[Result]) -> Any:
+def to_frame(results: Iterable[Result]) -> pd.DataFrame:
     """A pandas ``DataFrame`` with one row per result (their scalar fields).
 
     Examples

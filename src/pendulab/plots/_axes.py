@@ -11,6 +11,13 @@ def axes(ax: Axes | None = None) -> Axes:
     """``ax``, or pyplot's current axes (as matplotlib's own functions draw without one)."""
     if ax is not None:
         return ax
-    import matplotlib.pyplot as plt
+    from ..core.extras import require
 
-    return plt.gca()
+    return require("matplotlib.pyplot", "pendulab.plots").gca()
+
+
+def expect(result: object, kind: str, function: str, how: str) -> None:
+    """Refuse, with a TypeError naming what ``function`` draws, a result of another kind
+    (a period estimate given to ``time_series``), before matplotlib is touched."""
+    if type(result).__name__ != kind:
+        raise TypeError(f"{function}() draws a {kind} ({how}), not {type(result).__name__}")

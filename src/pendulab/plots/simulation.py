@@ -6,7 +6,7 @@ from typing import TYPE_CHECKING, Any
 import numpy as np
 
 from ..numerics.simulation import kept_steps, stride_for
-from ._axes import axes
+from ._axes import axes, expect
 
 if TYPE_CHECKING:
     from matplotlib.axes import Axes
@@ -19,6 +19,7 @@ def time_series(trajectory: Trajectory, ax: Axes | None = None, title: bool = Tr
     """Figure 1: the points ``(t_j, z1_j)`` of a simulation. Returns the axes drawn on.
 
     ``labels`` replaces the axis labels (keys ``x``, ``y``)."""
+    expect(trajectory, "Trajectory", "time_series", "pendulab.simulate(...)")
     ax = axes(ax)
     words = {"x": "t (s)", "y": r"$z_{1,j} \approx \theta(t_j)$ (rad)"} | (labels or {})
     kw: dict[str, Any] = {"marker": "o", "markersize": 3, "linestyle": "none", "color": "C0"} | style
@@ -43,6 +44,7 @@ def phase_portrait(trajectory: Trajectory, ax: Axes | None = None, max_arrows: i
     printed a few centimetres wide keeps visible heads. ``labels`` replaces the axis
     labels and the legend's (keys ``x``, ``y``, ``P``). Returns the axes drawn on.
     """
+    expect(trajectory, "Trajectory", "phase_portrait", "pendulab.simulate(...)")
     ax = axes(ax)
     words = {"x": r"$z_1 \approx \theta$ (rad)", "y": r"$z_2 \approx \theta'$ (rad/s)",
              "P": r"$P = (\alpha, 0)$"} | (labels or {})
