@@ -22,7 +22,7 @@ from pendulab.numerics.period import agm_period, periods
 from reference import G_TEXT, reference_period
 
 #: Examples that take seconds (Typst, a compiled sweep, the key's 2 groups): the slow tier.
-SLOW = {"report", "key", "sweep", "fit", "approximations"}
+SLOW = {"report", "key", "mark", "sweep", "fit", "approximations"}
 
 
 def _examples():
@@ -49,6 +49,8 @@ def test_every_command_has_examples_in_its_help(cli):
 def test_each_example_runs(cli, tmp_path, monkeypatch, line):
     monkeypatch.chdir(tmp_path)
     (tmp_path / "groups.txt").write_text("262 407 634\n12345, 23456, 34567\n")
+    if line.startswith("pendulab mark"):  # the answers file the class fills in: the key's template
+        assert cli("key", "--groups", "groups.txt", "--template", "answers", "-o", "answers.csv").code == 0
     res = cli(*shlex.split(line)[1:])
     assert res.code == 0, (line, res.err)
     assert res.out or res.err, line  # it says something
@@ -99,7 +101,7 @@ def test_every_default_is_shown_as_default(cli):
             continue
         if (p.default is None or repr(p.default) == "Sentinel.UNSET") and p.show_default in (None, False):
             # Optional outputs and choices that mean "not asked for" have nothing to show.
-            assert p.name in {"plot", "phase", "output", "scheduler", "names"}, (name, p.name)
+            assert p.name in {"plot", "phase", "output", "scheduler", "names", "template", "scheme_file"}, (name, p.name)
             continue
         assert p.show_default, (name, p.name)
         text = cli(name, "--help").out

@@ -61,6 +61,11 @@ EXAMPLES: dict[str, tuple[tuple[str, str], ...]] = {
         ("pendulab key --groups groups.txt", "the key as a table (groups.txt: one group a line, 262 407 634)"),
         ("pendulab key --groups groups.txt -o key.csv", "as CSV, for a spreadsheet"),
     ),
+    "mark": (
+        ("pendulab mark --groups groups.txt --answers answers.csv",
+         "each answer marked (answers.csv: pendulab key --groups groups.txt --template answers -o answers.csv)"),
+        ("pendulab mark --groups groups.txt --answers answers.csv -o marked.pdf", "the marked sheet as a PDF"),
+    ),
     "serve": (
         ("pendulab serve", "the explorer at http://127.0.0.1:8000/"),
         ("pendulab serve --port 8001", "on another port"),
