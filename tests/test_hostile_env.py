@@ -394,7 +394,7 @@ def test_limits_weigh_steps_by_the_methods_cost(cli):
 
 
 @settings(max_examples=200, deadline=None)
-@given(name=st.sampled_from(["taylor2", "rk4", "verlet"] + [f"taylor:{p}" for p in range(1, 31)]),
+@given(name=st.sampled_from([m.name for m in methods.menu()] + [f"taylor:{p}" for p in range(1, 31)]),
        budget=st.floats(1, 1e12), frac=st.floats(0.5, 2.0))
 def test_the_budget_refuses_exactly_above_it(name, budget, frac):
     """work_within accepts ``steps`` iff steps x cost <= budget; steps_for is the largest whole
@@ -412,9 +412,15 @@ def test_the_budget_refuses_exactly_above_it(name, budget, frac):
 
 
 def test_the_cost_model():
-    """Relative to taylor2; rising with the Taylor order (measured in benchmarks/method_cost.py)."""
+    """Relative to taylor2; every method of the menu has a measured cost, and every kernel is
+    on the menu or is the Taylor family's; rising with the Taylor order (measured in
+    benchmarks/method_cost.py)."""
     assert methods.cost_per_step("taylor2") == 1.0
-    costs = [methods.cost_per_step(f"taylor:{p}") for p in range(1, 31)]
+    menu = methods.menu()
+    assert set(methods.STEP_COST) == {m.code for m in menu} == set(methods.Kernel) - {methods.Kernel.TAYLOR}
+    for m in menu:
+        assert 1.0 <= methods.cost_per_step(m) < 10, m.name
+    costs = [methods.cost_per_step(f"taylor:{p}") for p in range(1, methods.MAX_TAYLOR_ORDER + 1)]
     assert all(b > a for a, b in zip(costs, costs[1:]))
     assert 30 < costs[-1] < 50 and 1 < methods.cost_per_step("rk4") < 3
     with pytest.raises(InputError):
