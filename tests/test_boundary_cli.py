@@ -271,7 +271,7 @@ def test_a_run_that_works_fits_in_the_limits(tmp_path):
     (["estimate", "--t-max", "-3"], "--t-max = -3 ", "> 0 s"),
     (["sweep", "-a", "10deg:20deg:3", "--step", "1e-2,1e-12"], "--step = 1e-12 ", ">= "),
     (["gravity", "--length-error", "2m"], "--length-error = 2m ", "< --length = 1.152 m"),
-    # Values as typed, a method name too (it was echoed as a repr, 'foo').
+    # Values as typed, a method name too (foo, not its repr 'foo').
     (["sweep", "--method", "foo"], "--method = foo ", "taylor:P"),
     (["sweep", "--method", "rk4,foo"], "--method = foo ", "taylor:P"),
     (["simulate", "--method", "foo"], "--method = foo ", "taylor:P"),

@@ -107,7 +107,7 @@ def test_bad_input(kwargs, name):
 def test_tiny_amplitudes_give_the_small_amplitude_estimates_bit_for_bit(method):
     # Below 2^-30, sin(z) = z and cos(z) = 1 in doubles: the simulation is linear and
     # scales by the power of two exactly, so the estimates must be the same bits
-    # (they were -inf and NaN at 1e-160: the divided differences overflowed).
+    # (at 1e-160 the divided differences of theta' overflow unless scaled: -inf and NaN).
     ref = estimate_period(1.0, 2.0**-30, 1e-3, method=method)
     for e in (-500, -1000):
         est = estimate_period(1.0, 2.0**e, 1e-3, method=method)

@@ -50,6 +50,76 @@ def test_no_history_in_readme_and_docs(path):
     assert not found, found
 
 
+#: Phrases that tell the code's history, in a comment or a docstring: the code says what
+#: it does, the history is in git.
+CODE_HISTORY = re.compile(
+    r"\b(previously|formerly|until now|these days|was fixed|earlier run|the aim was"
+    r"|used to (be|cost|take|run|give|return|print|fail|say|raise|hold|call|load)"
+    r"|(was|were) (-?inf|nan|fixed|wrong|broken|slower|faster|changed|removed|added|echoed)"
+    r"|(it|they) (was|were) (echoed|printed|returned)"
+    r"|before (it|they|these|this) (ran|were|was|had)|a checkout without|the old (code|version|way|loop)"
+    r"|no longer (flattens|underflows|fails|raises|prints|returns|uses|calls|loads|takes|costs|needs|imports)"
+    r"|(is|are) now (faster|slower|\w+ed)\b)", re.IGNORECASE)
+
+#: A timing in the package's prose (``6 ms``, ``0.7 us``, ``1.3x faster``, ``in two runs``):
+#: measurements belong to ``benchmarks/`` and docs/performance.md, where a run writes them.
+TIMING = re.compile(r"\b\d+(\.\d+)?(-\d+(\.\d+)?)? (ns|us|µs|ms)\b|\b\d+(\.\d+)?x (faster|slower)\b"
+                    r"|\bin (two|three|four|\d+) runs\b|\bload (average )?\d")
+
+
+def _prose(path: Path):
+    """``(line, text)`` of each comment and docstring of a Python file; the whole of any other."""
+    import io
+    import tokenize
+
+    text = path.read_text()
+    if path.suffix != ".py":
+        yield 1, text
+        return
+    for tok in tokenize.generate_tokens(io.StringIO(text).readline):
+        if tok.type == tokenize.COMMENT or (
+                tok.type == tokenize.STRING and tok.string.lstrip("rbfuRBFU").startswith(('"""', "'''"))):
+            yield tok.start[0], tok.string
+
+
+def _found(pattern, roots, suffixes):
+    for root in roots:
+        for path in sorted((ROOT / root).rglob("*")):
+            if path.suffix in suffixes and ".min." not in path.name:
+                for line, text in _prose(path):
+                    for m in pattern.finditer(text):
+                        yield f"{path.relative_to(ROOT)}:{line + text.count(chr(10), 0, m.start())}: {m.group(0)}"
+
+
+@pytest.mark.parametrize("text, history", [
+    ("# it was echoed as a repr", True), ("# Was inf at 1e-200", True), ("its rounding used to cost 2e-13", True),
+    ("the kernels before they ran in pieces", True), ("run against a checkout without that branch", True),
+    ("one method no longer flattens the others", True), ("the bound used to count digits", False),
+    ("a process that no longer runs", False), ("every file is as it was", False), ("S_n no longer depends on alpha", False),
+])
+def test_the_history_pattern(text, history):
+    assert bool(CODE_HISTORY.search(text)) == history
+
+
+@pytest.mark.parametrize("root", ["src", "tests", "benchmarks", "docs"])
+def test_no_history_in_comments_and_docstrings(root):
+    found = list(_found(CODE_HISTORY, [root], {".py", ".js", ".md", ".html", ".typ"}))
+    assert not found, found
+
+
+@pytest.mark.parametrize("text, timing", [
+    ("about 0.7 us each", True), ("5.6 ms, 2.9 kB", True), ("512 bits run about 1.3x faster", True),
+    ("rk4 2.16-2.23x in two runs", True), ("``10ms``, ``2s``", False), ("tens of ms", False),
+])
+def test_the_timing_pattern(text, timing):
+    assert bool(TIMING.search(text)) == timing
+
+
+def test_no_measurement_logs_in_the_packages_prose():
+    found = list(_found(TIMING, ["src"], {".py", ".js", ".html", ".typ"}))
+    assert not found, found
+
+
 def _console_examples(text):
     """The ``$ pendulab ...`` lines of the README's console blocks, each with the output shown under it."""
     examples = []

@@ -246,14 +246,14 @@ def s_n_sin_form_mp(alpha: float, n: int, length: float = 1.0, dps: int = 50):
 @pytest.mark.parametrize("alpha", [1e-160, 1e-200, 1e-300, 5e-324, 1e-3, ALPHA, math.pi - 1e-12])
 @pytest.mark.parametrize("n", [1, 10, 100])
 def test_singular_sum_at_every_amplitude_against_mpmath(alpha, n):
-    # Was inf at 1e-200 and 1.93320 (for 1.93527) at 1e-160: 2 sin sin underflowed.
+    # The form 2 sin sin underflows there (inf at 1e-200, 1.93320 for 1.93527 at 1e-160).
     assert quadrature_period(1.0, alpha, n) == pytest.approx(float(s_n_sin_form_mp(alpha, n)), rel=4e-15)
 
 
 @pytest.mark.slow
 def test_singular_sum_nodes_keep_their_distance_to_alpha():
-    # With 10^4 panels the last node lies alpha/(9 10^4) from the singularity; its rounding
-    # used to cost 2e-13 (measured); the reflected variable keeps S_n to rounding.
+    # With 10^4 panels the last node lies alpha/(9 10^4) from the singularity; the node as
+    # alpha - theta would cost 2e-13; the reflected variable keeps S_n to rounding.
     assert quadrature_period(L, ALPHA, 10**4) == pytest.approx(float(s_n_mp(10**4, dps=25)), rel=2e-15)
 
 
@@ -315,5 +315,5 @@ from hypothesis import strategies as st  # noqa: E402
 @given(alpha=st.floats(5e-324, 1e-9), n=st.sampled_from([1, 10, 100]))
 def test_tiny_amplitudes_give_the_small_amplitude_sum(alpha, n):
     # For alpha < 1e-9, sinc(alpha y/2) is 1 to rounding: S_n no longer depends on alpha,
-    # down to the smallest subnormal (it was inf below about 1e-154).
+    # down to the smallest subnormal (the form 2 sin sin is inf below about 1e-154).
     assert quadrature_period(1.0, alpha, n) == pytest.approx(quadrature_period(1.0, 1e-9, n), rel=4e-16)

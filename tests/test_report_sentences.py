@@ -331,7 +331,7 @@ def test_figure3_points_over_the_curve_and_figure4_band_visible():
     assert len(points.get_xdata()) == r.points and points.get_zorder() > curve.get_zorder()
     fit_residuals(r, b)
     assert b.get_yscale() == "symlog"
-    # The band +-tolerance takes a visible share of the axis height (it was 1/200 on a linear axis).
+    # The band +-tolerance takes a visible share of the axis height (1/200 of it on a linear axis).
     lo, hi = b.get_ylim()
     tr = b.transData.transform
     band = abs(tr((0, r.tolerance))[1] - tr((0, -r.tolerance))[1])

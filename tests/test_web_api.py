@@ -544,7 +544,7 @@ def test_serve_suggests_a_free_port_and_lists_lan_addresses(capsys, monkeypatch,
     free = int(err.split("port ")[-1].split()[0])
     assert free > busy_port and f"pendulab serve --port {free}" in err
     with socket.socket() as s:
-        s.bind(("127.0.0.1", free))  # it was free indeed
+        s.bind(("127.0.0.1", free))  # the port named is free
     assert all(not a.startswith("127.") for a in serve_cmd.lan_addresses())
     monkeypatch.setattr(serve_cmd, "lan_addresses", lambda: ["192.168.1.20", "10.0.0.5"])
     assert serve_cmd.urls("0.0.0.0", 8000) == ["http://192.168.1.20:8000/", "http://10.0.0.5:8000/", "http://127.0.0.1:8000/"]

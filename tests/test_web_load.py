@@ -69,8 +69,8 @@ HEAVY = {"length": "1", "amplitude": "30deg", "step": "1e-5", "t_max": "50"}  # 
 def heavy_count(base: str, busy_seconds: float = 4.0) -> int:
     """How many heavy simulations keep both simulation slots busy for ``busy_seconds``.
 
-    Calibrated on this machine: a fixed count was done before the page was asked for on a
-    fast machine, which made the test's premise (heavy work in flight) false.
+    Calibrated on the machine that runs the test: a fixed count could be done before the
+    page is asked for on a fast machine, and the test's premise (heavy work in flight) false.
     """
     httpx.get(base + "/api/simulate", params=HEAVY, timeout=300)  # compiled and warm
     t0 = time.perf_counter()

@@ -123,7 +123,7 @@ def deferred() -> Iterator[list[int]]:
 
 
 #: Steps of (3) per piece of a long kernel run (:func:`run_pieces`): 4 * 10^6 steps, tens
-#: of ms (5-20 ns a step, ``benchmarks/method_cost.py``); a Python call per piece is nothing beside it.
+#: of ms (``benchmarks/method_cost.py``); a Python call per piece is nothing beside it.
 CHUNK_COST = 1 << 22
 
 

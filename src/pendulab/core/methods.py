@@ -86,12 +86,10 @@ def resolve(name: object, argument: str = "method") -> Method:
 
 
 #: The cost of one step of each named method, relative to one step of (3) (taylor2):
-#: measured by ``benchmarks/method_cost.py`` (the period search's kernel, CPU time,
-#: rk4 2.16-2.23x and verlet 1.06-1.07x in two runs), rounded.
+#: measured by ``benchmarks/method_cost.py`` (the period search's kernel, CPU time), rounded.
 STEP_COST: dict[Kernel, float] = {Kernel.TAYLOR2: 1.0, Kernel.RK4: 2.2, Kernel.VERLET: 1.1}
 #: ``taylor:P`` costs ``a + b P + c P^2`` steps of (3): the fit of the same measurements
-#: (its recurrences take ``O(P^2)`` operations; the fit is within 5% of each of P = 1..30,
-#: 3.3x at P = 1, 40x at P = 30).
+#: (its recurrences take ``O(P^2)`` operations; the fit is within 5% of each of P = 1..30).
 TAYLOR_COST = (2.9, 0.40, 0.028)
 
 

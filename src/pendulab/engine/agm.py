@@ -137,8 +137,8 @@ def _prefer_512_bit_vectors(typingctx):
     LLVM's tuning for Intel's AVX-512 CPUs prefers 256-bit vectors (``prefer-256-bit``)
     unless a function carries ``"prefer-vector-width"="512"`` (clang's
     ``-mprefer-vector-width=512``); numba sets no such attribute, and llvmlite accepts only
-    the attributes it knows, hence ``set.add``. On this kernel 512 bits run about 1.3x
-    faster; a CPU without AVX-512 ignores the attribute.
+    the attributes it knows, hence ``set.add``. On this kernel 512 bits run faster
+    (``benchmarks/bench_agm.py``); a CPU without AVX-512 ignores the attribute.
     """
     def codegen(context, builder, signature, args):
         with contextlib.suppress(TypeError):  # a later llvmlite's attribute set: default width

@@ -166,7 +166,7 @@ def drive(method, order, a, b, c, h, i0, i1, stride, n, z1, z2):
     how many states were kept. ``i1 <= n``.
     """
     k = 0
-    keep = (i0 // stride + 1) * stride  # the next multiple of stride: no division per step (~7 ns of ~30)
+    keep = (i0 // stride + 1) * stride  # the next multiple of stride: no division per step
     for i in range(i0 + 1, i1 + 1):
         a, b = step(method, order, a, b, h, c)
         if i == keep or i == n:  # noqa: SIM109 (two compares in the compiled loop, no tuple)

@@ -308,9 +308,9 @@ def first_returns(method, order, alphas, cs, h, n_steps, threads: int | None = N
     :func:`first_returns_serial`. Tasks of whole groups of :data:`BLOCK` pendulums, about
     :data:`TASK_STEPS` steps each (:func:`tasks`), go to the threads as they
     become free; the kernels release the GIL, so the threads run on separate cores. Each
-    pendulum gives the same result, bit for bit, on any number of threads. (A
-    ``parallel=True`` build of the serial loop ran each thread about 1.5x slower than the
-    serial kernel.) Each block runs in pieces: Ctrl+C or SIGTERM stops every thread within
+    pendulum gives the same result, bit for bit, on any number of threads (a
+    ``parallel=True`` build of the serial loop is slower per thread than the serial kernel:
+    ``benchmarks/bench_sweep.py``). Each block runs in pieces: Ctrl+C or SIGTERM stops every thread within
     one piece (tens of ms), and is raised once they all stopped.
     """
     threads = get_num_threads() if threads is None else threads

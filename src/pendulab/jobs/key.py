@@ -26,8 +26,8 @@ FORMATS = ("csv", "json", "pdf")
 #: The largest groups file read (a class of thousands of groups is a few hundred kB):
 #: a file that is not a regular file (a pipe, a device) is read up to this many bytes too.
 MAX_FILE_BYTES = 10**7
-#: The most groups in one key (a class is tens of groups). Each costs about 6 ms of CPU and
-#: 3 kB of PDF (``benchmarks/key_cost.py --groups 20``: 5.6 ms, 2.9 kB): 1000 groups about 6 s.
+#: The most groups in one key (a class is tens of groups): a few seconds of work at most
+#: (a group's cost: ``benchmarks/key_cost.py``).
 MAX_GROUPS = 1000
 #: Seconds a pipe or device may stay silent while its groups are read (a named pipe that
 #: no program writes to is empty at once; a terminal, or a writer that never writes, waits).

@@ -49,8 +49,8 @@ __all__ = [
 # ``pendulab period``) needs neither.
 
 #: Arrays of at least this many elements run the AGM (7) compiled (``kernels.agm_means``),
-#: shorter ones in the interpreter, element by element: about 0.7 us each, while loading the
-#: compiled kernel takes about 0.7 s in a fresh process (numba's import, its threads). The
+#: shorter ones in the interpreter, element by element, which costs less than loading the
+#: compiled kernel in a fresh process (numba's import, its threads: ``benchmarks/``). The
 #: same loop (``pendulab.engine.mean.agm``) either way, so the same bits.
 COMPILED_MIN = 10_000
 #: How far (in ulps) the coursework's 7-iteration ``T^`` of (8), the loop (7) in double

@@ -208,7 +208,7 @@ def scaled_period_integrand(alpha: float) -> Callable[[np.ndarray], np.ndarray]:
 
         alpha f(alpha (1 - d)) = sqrt(2) / sqrt((2 - d) d sinc(alpha (2 - d)/2) sinc(alpha d/2))
 
-    which is of order 1 for every amplitude: ``2 sin sin ~ alpha^2`` no longer underflows
+    which is of order 1 for every amplitude, where ``2 sin sin ~ alpha^2`` underflows
     (at ``alpha = 1e-160`` it is subnormal, at ``1e-200`` zero). The variable ``d`` is
     the distance to the singularity itself, so a node near it carries a relative
     rounding of ``d``, not an absolute rounding of ``theta`` (which, relative to the

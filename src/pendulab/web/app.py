@@ -253,7 +253,7 @@ def create_app(allowed_hosts: Iterable[str] = guard.LOCAL_HOSTS) -> FastAPI:
     @app.get("/api/period", response_model=models.PeriodAnswer, responses=bad)
     async def period(length: Length = None, amplitude: Amplitude = None, unit: Unit = None,
                      g: Gravity = None) -> Response:
-        # The periods of one pendulum (periods(): about 0.1 ms), answered on the event loop.
+        # The periods of one pendulum (periods(), a fraction of a millisecond), answered on the event loop.
         return light(views.period_endpoint, {"length": length, "amplitude": amplitude, "unit": unit, "g": g})
 
     @app.get("/api/simulate", response_model=models.SimulateAnswer, responses=bad)

@@ -503,7 +503,7 @@ function methodLines(xOf, yOf, hovertemplate) {
 
 function renderError() {
   const log = view.errlog;
-  // On a log scale |error|: one diverging method no longer flattens the others.
+  // On a log scale |error|: one diverging method does not flatten the others.
   const y = (s) => (log ? s.error.theta.map((v) => (v === null || v === 0 ? null : Math.abs(v))) : s.error.theta);
   const traces = methodLines((s) => s.error.t, y, log ? "t = %{x:.4f} s<br>|θ − θ_exact| = %{y:.3e} rad<extra></extra>"
     : "t = %{x:.4f} s<br>θ − θ_exact = %{y:.3e} rad<extra></extra>");
