@@ -73,10 +73,10 @@ def seven_iterations(quick: bool = False) -> tuple[str, list[str], list[list[str
         else:
             alphas = math.pi - np.exp(rng.uniform(math.log(gaps[0]), math.log(gaps[1]), size))
         alphas = alphas[alphas < math.pi]
-        t7 = agm_period(1.0, alphas, iterations=7)
-        same = np.mean([x == converged(a) for x, a in zip(t7, alphas)])
+        t_hat = agm_period(1.0, alphas, iterations=7)
+        same = np.mean([x == converged(a) for x, a in zip(t_hat, alphas)])
         ref = adversarial.correctly_rounded_periods(1.0, alphas)
-        ulps = np.abs(t7 - ref) / np.array([math.ulp(r) for r in ref])
+        ulps = np.abs(t_hat - ref) / np.array([math.ulp(r) for r in ref])
         rows.append([name, str(len(alphas)), f"{same:.1%}", f"{np.mean(ulps == 0):.1%}", f"{ulps.max():.0f}"])
     title = (f"`T^`, 7 iterations of (7), `l = 1` (`fixed_iterations_limit()` = pi - {math.pi - limit:.3g}: the "
              "truncation is at most half an ulp below it)")

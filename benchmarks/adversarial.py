@@ -193,9 +193,9 @@ def t_hat_search(budget: int = 200_000, seed: int = 1) -> dict:
     target = 2.0 ** rng.integers(-1, 5, n) * (1 - 10 ** rng.uniform(-12, -2, n))  # just below 2^e
     lengths = np.where(np.arange(n) % 2 == 0, (target / t1) ** 2,
                        rng.choice([1.0, 3.5, 2.0800838231], n) * np.where(rng.random(n) < 0.5, 1.0, 10 ** rng.uniform(-2, 2, n)))
-    t7 = np.asarray(agm_period(lengths, alphas, iterations=7))
+    t_hat = np.asarray(agm_period(lengths, alphas, iterations=7))
     tc = np.asarray(agm_period(lengths, alphas))
-    d = np.abs(t7 - tc) / np.array([math.ulp(x) for x in tc])
+    d = np.abs(t_hat - tc) / np.array([math.ulp(x) for x in tc])
     worst, where, count = 0.0, None, n
     for i in np.argsort(-d)[:20]:
         length, alpha = float(lengths[i]), float(alphas[i])

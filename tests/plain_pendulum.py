@@ -18,7 +18,7 @@ def length_text(numbers) -> str:
     return length.group_length(list(numbers))[2]
 
 
-def agm7_period(length: float, alpha: float = ALPHA) -> float:
+def t_hat(length: float, alpha: float = ALPHA) -> float:
     """T^ of (8), 7 iterations."""
     return agm.t_hat(length, alpha)
 

@@ -9,7 +9,7 @@ from pendulab.core.errors import InputError
 from pendulab.numerics.crossing import estimate_period
 from pendulab.numerics.motion import exact_motion, global_error
 from pendulab.numerics.period import agm_period
-from pendulab.numerics.simulation import METHODS, method_code, simulate
+from pendulab.numerics.simulation import method_code, simulate
 from reference import EXAMPLE_LENGTH, G, taylor2_plain
 
 
@@ -119,7 +119,8 @@ def test_high_order_taylor_step_is_exact_to_rounding():
 
 
 def test_methods_registry_and_bad_names():
-    assert METHODS["taylor2"] == (0, 2) and METHODS["rk4"][1] == 4 and METHODS["verlet"][1] == 2
+    assert [(m.name, method_code(m.name)) for m in methods.menu()] == [("taylor2", (0, 2)), ("rk4", (1, 4)),
+                                                                        ("verlet", (2, 2))]
     assert method_code("taylor:7") == (3, 7)
     for bad in ("taylor:0", "taylor:-1", "taylor:31", "taylor:", "taylor:2.5", "euler", "RK4"):
         with pytest.raises(InputError, match=r"method = .* taylor2, rk4, verlet, taylor:P"):

@@ -74,9 +74,9 @@ def test_seven_iterations_reproduce_spec_and_are_exact_for_moderate_amplitudes()
 
     t0 = small_angle_period(1.0)
     for alpha in np.linspace(0, 3.14, 50):
-        t7 = agm_period(1.0, alpha, iterations=7)
-        assert t7 == t0 / agm_mean(math.cos(alpha / 2))
-        assert abs(t7 - agm_period(1.0, alpha)) <= 2 * math.ulp(t7)
+        t_hat = agm_period(1.0, alpha, iterations=7)
+        assert t_hat == t0 / agm_mean(math.cos(alpha / 2))
+        assert abs(t_hat - agm_period(1.0, alpha)) <= 2 * math.ulp(t_hat)
 
 
 @pytest.mark.parametrize("iterations", [0, 1, 3, 7])

@@ -195,11 +195,11 @@ def test_seven_iterations_within_their_bound_up_to_the_truncation_limit():
     rng = np.random.default_rng(11)
     alphas = np.concatenate([rng.uniform(0, 3.1, 150),
                              3.141592653589793 - np.exp(rng.uniform(np.log(3.3e-14), np.log(1e-6), 150))])
-    t7 = agm_period(1.0, alphas, iterations=7)
+    t_hat = agm_period(1.0, alphas, iterations=7)
     # 1 - m = cos^2(alpha/2) is 3e-28 at the limit: 70 digits keep 40 of it.
     with mpmath.workdps(70):
         ref = [float(reference_period_kp(1, mpmath.cos(mpmath.mpf(a) / 2), G)) for a in alphas]
-    ulps = [abs(x - r) / math.ulp(r) for x, r in zip(t7, ref)]
+    ulps = [abs(x - r) / math.ulp(r) for x, r in zip(t_hat, ref)]
     assert max(ulps) <= FIXED_ITERATIONS_ULPS
 
 

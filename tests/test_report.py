@@ -381,18 +381,18 @@ def test_every_group_problem3_matches_plain_python(group_docs):
         digits = str(sum(students)).replace("0", "")
         assert doc.choices["p3b.len"] == ("p3b.len.one" if len(digits) == 1 else "p3b.len.many")
         length = float(text)
-        exact = plain.agm7_period(length)
-        event = plain.first_event(length, 0.2, 4 * exact)
+        t_hat = plain.t_hat(length)
+        event = plain.first_event(length, 0.2, 4 * t_hat)
         outcomes.add(event[0])
         assert doc.choices["p3b.tmax"] == f"p3b.tmax.{event[0]}"
         sentence = doc.entry("p3b.bracket")
         if event[0] == "returns":
             j = event[1]
             # Where T^ lies against [t_j, t_(j+1)], by the plain program's own numbers.
-            side = "below" if exact < j * 0.2 else "above" if exact > (j + 1) * 0.2 else "inside"
+            side = "below" if t_hat < j * 0.2 else "above" if t_hat > (j + 1) * 0.2 else "inside"
             assert doc.choices["p3b.bracket"] == f"p3b.bracket.{side}"
             assert f"t_{j} = {num(j * 0.2, 6)}" in sentence and f"t_{j + 1} = {num((j + 1) * 0.2, 6)}" in sentence
-            seen = max(exact, (j + 1) * 0.2)
+            seen = max(t_hat, (j + 1) * 0.2)
         else:
             assert doc.choices["p3b.bracket"] == f"p3b.bracket.{event[0]}"
             assert f"t = {num(event[1], 6)}" in sentence
@@ -407,7 +407,7 @@ def test_every_group_problem3_matches_plain_python(group_docs):
         assert doc.choices["p3d.est"] == ("p3d.est.resolved" if resolved else "p3d.est.rounding")
         bound = max(abs(ref["error_estimate"]), ref["rounding_level"])
         assert float(doc.values["p3d.bound"].replace(" × 10#super[−", "e-").rstrip("]")) == pytest.approx(bound, rel=0.01)
-        ratio = bound / abs(ref["cubic"] - exact)
+        ratio = bound / abs(ref["cubic"] - t_hat)
         assert doc.choices["p3d.verdict"] == ("p3d.verdict.negligible" if ratio < 1e-3 else "p3d.verdict.not_negligible")
     assert outcomes == {"returns", "leaves"}
 
@@ -511,14 +511,14 @@ def test_section0_sentences_are_true(tmp_path, lang):
             t = 4 * mpmath.sqrt(mpmath.mpf(l_) / mpmath.mpf(G)) * mpmath.ellipk(mpmath.sin(mpmath.mpf(a) / 2) ** 2)
             return mpmath.libmp.to_float(t._mpf_, rnd="n")
 
-    # "T^ = t7 s, n ulp from the correctly rounded period of the same doubles, tc s"
-    t7, tc = plain.agm7_period(length), nearest(length, alpha)
-    ulps = round(abs(t7 - tc) / math.ulp(tc))
+    # "T^ = t_hat s, n ulp from the correctly rounded period of the same doubles, tc s"
+    t_hat, tc = plain.t_hat(length), nearest(length, alpha)
+    ulps = round(abs(t_hat - tc) / math.ulp(tc))
     # Digits enough for each to read back as its own double (17 here): never the same digits twice.
-    d = next(d for d in (16, 17) if float(f"{t7:.{d}g}") == t7 and float(f"{tc:.{d}g}") == tc)
-    assert f"{t7:.{d}g}" != f"{tc:.{d}g}"
+    d = next(d for d in (16, 17) if float(f"{t_hat:.{d}g}") == t_hat and float(f"{tc:.{d}g}") == tc)
+    assert f"{t_hat:.{d}g}" != f"{tc:.{d}g}"
     connective = "from" if lang == "en" else "de"
-    assert f"$hat(T) = {t7:.{d}g}$ s, {'' if lang == 'en' else 'a '}{ulps} ulp {connective} {tc:.{d}g} s" in text
+    assert f"$hat(T) = {t_hat:.{d}g}$ s, {'' if lang == 'en' else 'a '}{ulps} ulp {connective} {tc:.{d}g} s" in text
     # "the interval's two ends round to the same 20 digits": the ball contains mpmath's period
     # and is narrower than the rounding interval's half-width around the printed digits.
     digits = re.search(r"\$T = ([0-9.]+)\$ s", text).group(1)

@@ -105,15 +105,15 @@ def correctly_rounded_period(length: float) -> float:
 def test_section0_never_shows_equal_digits_n_ulp_apart(students):
     doc = sections(students, ["AGM period"])
     length = float(plain.length_text(students))
-    t7, tc = plain.agm7_period(length), correctly_rounded_period(length)
+    t_hat, tc = plain.t_hat(length), correctly_rounded_period(length)
     sentence = doc.entry("agm.text")
-    ulps = round(abs(t7 - tc) / math.ulp(tc))
-    shown7, shownc = doc.values["agm.t7"], doc.values["agm.tc"]
-    if t7 == tc:
+    ulps = round(abs(t_hat - tc) / math.ulp(tc))
+    shown_hat, shownc = doc.values["agm.t_hat"], doc.values["agm.tc"]
+    if t_hat == tc:
         assert doc.choices["agm.same"] == "agm.same.equal" and "ulp" not in doc.entry("agm.same")
-        assert f"= {shown7}$ s, equal to the correctly rounded period" in sentence
+        assert f"= {shown_hat}$ s, equal to the correctly rounded period" in sentence
     else:
-        assert shown7 != shownc and float(shown7) == t7 and float(shownc) == tc  # the digits tell them apart
+        assert shown_hat != shownc and float(shown_hat) == t_hat and float(shownc) == tc  # the digits tell them apart
         assert f"{ulps} ulp from {shownc} s" in sentence
 
 
@@ -121,7 +121,7 @@ def test_section0_never_shows_equal_digits_n_ulp_apart(students):
 def test_section0_the_groups_seen_on_a_page(students, choice):
     doc = sections(students, ["AGM period"])
     assert doc.choices["agm.same"] == choice
-    assert doc.values["agm.t7"] != doc.values["agm.tc"] or choice == "agm.same.equal"
+    assert doc.values["agm.t_hat"] != doc.values["agm.tc"] or choice == "agm.same.equal"
 
 
 # ----------------------------------------------------------------------------- 3(b)
@@ -133,7 +133,7 @@ def test_3b_says_where_t_hat_lies_against_the_bracket(students):
 
     doc = sections(students, ["problem 3"])
     length = float(plain.length_text(students))
-    t_hat = plain.agm7_period(length)
+    t_hat = plain.t_hat(length)
     event = plain.first_event(length, 0.2, 4 * t_hat)
     sentence = doc.entry("p3b.bracket")
     # 3(c): "observed orders {first} and then {last}, approaching 2", from the plain program's errors.

@@ -22,6 +22,7 @@ from playwright.sync_api import TimeoutError as PlaywrightTimeoutError
 from playwright.sync_api import sync_playwright
 
 from _browser import find_chromium
+from pendulab.core import methods
 from pendulab.core.inputs import parse_angle
 from pendulab.numerics import simulation
 from reference import EXAMPLE_LENGTH, EXAMPLE_LENGTH_TEXT, ellipk_period
@@ -154,7 +155,7 @@ def test_every_method_is_offered(page, server):
     page.wait_for_function("document.querySelectorAll('#method option').length > 0")
     offered = page.eval_on_selector_all("#method option", "os => os.map(o => o.value)")
     # The registry: its named methods, then taylor:P for every order, Euler's method (taylor:1) first.
-    assert offered == list(simulation.METHODS) + [f"taylor:{p}" for p in range(1, 31)]
+    assert offered == [m.name for m in methods.menu()] + [f"taylor:{p}" for p in range(1, 31)]
     assert "Euler" in page.locator("#method option[value='taylor:1']").text_content()
     assert page.eval_on_selector_all("#method2 option", "os => os.map(o => o.value)") == [""] + offered
 

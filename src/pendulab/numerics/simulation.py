@@ -5,7 +5,6 @@
 """
 from __future__ import annotations
 
-from collections.abc import Mapping
 from dataclasses import dataclass
 
 import numpy as np
@@ -15,24 +14,6 @@ from ..core import validate as v
 from ..core.cases import G
 from .results import Result
 
-
-class _Codes(Mapping):
-    """``{name: (kernel code, order)}`` of :data:`pendulab.core.methods.METHODS`, read live."""
-
-    def __getitem__(self, name: str) -> tuple[int, int]:
-        m = _methods.METHODS[name]
-        return int(m.code), m.order
-
-    def __iter__(self):
-        return iter(_methods.METHODS)
-
-    def __len__(self) -> int:
-        return len(_methods.METHODS)
-
-
-#: Integrators by name: (kernel code, order); a view of the registry :mod:`pendulab.core.methods`.
-METHODS: Mapping[str, tuple[int, int]] = _Codes()
-TAYLOR_CODE, MAX_TAYLOR_ORDER = int(_methods.Kernel.TAYLOR), _methods.MAX_TAYLOR_ORDER
 #: The largest trajectory kept in memory (points); longer runs stream (crossing.py).
 MAX_POINTS = 10_000_001
 #: The most steps of (3) one simulation may take (seconds on one core); other methods'

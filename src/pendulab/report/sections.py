@@ -42,7 +42,7 @@ def agm(doc: Doc, students: Sequence[int]) -> None:
     l_text = p["length.py"].group_length(list(students))[2]
     length = float(l_text)
     alpha = p["problem3.py"].ALPHA
-    t7 = p["agm.py"].t_hat(length, alpha)
+    t_hat = p["agm.py"].t_hat(length, alpha)
     tc = period.agm_period(length, alpha)  # the engine: correctly rounded
     # The inputs exactly as written: l the 10-decimal text, alpha = 4 pi/5 with the true pi.
     digits = period.period_digits(parse_number("length", l_text), PROBLEM3_AMPLITUDE, G_EXACT, digits=20)
@@ -50,11 +50,11 @@ def agm(doc: Doc, students: Sequence[int]) -> None:
 
     limit = period.fixed_iterations_limit()
     gap = float(mpmath.pi - mpmath.mpf(limit))
-    t7_text, tc_text = distinct(t7, tc)  # never the same digits beside "N ulp from"
-    ulps = round(abs(t7 - tc) / math.ulp(tc))
+    t_hat_text, tc_text = distinct(t_hat, tc)  # never the same digits beside "N ulp from"
+    ulps = round(abs(t_hat - tc) / math.ulp(tc))
     doc.set(**{
         "agm.l": l_text,
-        "agm.t7": t7_text,
+        "agm.t_hat": t_hat_text,
         "agm.tc": tc_text,
         "agm.mp": digits,
         "agm.diff": integer(ulps),
@@ -64,7 +64,7 @@ def agm(doc: Doc, students: Sequence[int]) -> None:
         "agm.limit": num(_toward(limit, 15, ROUND_FLOOR), 15),
         "agm.gap": sci_up(gap, 2),
     })
-    doc.choose("agm.same", "equal" if t7 == tc else "one" if ulps == 1 else "many")
+    doc.choose("agm.same", "equal" if t_hat == tc else "one" if ulps == 1 else "many")
     doc.set(**{"agm.relation": doc.entry("agm.same")})
 
 
