@@ -28,6 +28,10 @@ def run() -> int:
         from .core.streams import adopt_standard_streams
 
         adopt_standard_streams()  # before anything opens a file: a closed stdout is held, not reused
+        from .core.environ import odd_numba_settings
+
+        for note in odd_numba_settings():  # before numba's import reads them
+            sys.stderr.write(note + "\n")
         from .cli import main
 
         code = main()

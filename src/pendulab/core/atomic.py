@@ -34,7 +34,7 @@ from pathlib import Path
 
 from .errors import InputError, shown
 from .interrupt import check_signals, deferred
-from .streams import sync, write_all, write_file
+from .streams import WriteError, sync, write_all, write_file
 
 #: Permission bits an output keeps from the file it replaces: never setuid, setgid or sticky.
 _KEPT_BITS = 0o777
@@ -330,8 +330,14 @@ def _old_bytes(target: Path) -> bytes | None:
 
 def check_not_input(name: str, path: str | os.PathLike, source_name: str, source: str | os.PathLike) -> None:
     """Refuse an output ``path`` that is the input ``source`` (the same file, through any
-    link or spelling): writing it would destroy the input."""
+    link or spelling; ``-``: the file standard input reads): writing it would destroy the input."""
     with contextlib.suppress(OSError):
+        if source == "-":
+            st, out = os.fstat(0), os.stat(_real(path))
+            if stat.S_ISREG(st.st_mode) and (st.st_dev, st.st_ino) == (out.st_dev, out.st_ino):
+                raise InputError(name, shown(path), f"a file other than the {source_name} file it is made from "
+                                                    "(standard input reads it)")
+            return
         if os.path.samefile(_real(path), source):
             raise InputError(name, shown(path), f"a file other than the {source_name} file it is made from")
 
@@ -359,8 +365,12 @@ def temp_folder(prefix: str) -> Iterator[Path]:
     """A new private folder in the temporary folder, removed on leaving (an error, Ctrl+C,
     SIGTERM, SIGHUP, SIGQUIT); named ``<prefix><pid>-<random>``, so that the folders of a
     run that was killed (SIGKILL) are removed by the next one (:func:`sweep_temp_folders`)."""
-    sweep_temp_folders(prefix)
-    folder = Path(tempfile.mkdtemp(prefix=f"{prefix}{os.getpid()}-"))
+    try:
+        sweep_temp_folders(prefix)
+        folder = Path(tempfile.mkdtemp(prefix=f"{prefix}{os.getpid()}-"))
+    except OSError as exc:  # no usable temporary folder at all (TMPDIR, /tmp, /var/tmp, the current folder)
+        raise WriteError("a temporary folder", exc.errno, "none is writable (TMPDIR, /tmp, /var/tmp, the current "
+                                                         "folder); set TMPDIR to a writable folder") from None
     try:
         yield folder
     finally:
@@ -371,7 +381,7 @@ def temp_folder(prefix: str) -> Iterator[Path]:
 def sweep_temp_folders(prefix: str) -> None:
     """Remove this user's ``<prefix><pid>-*`` folders in the temporary folder whose process
     no longer runs (never through a link)."""
-    base = Path(tempfile.gettempdir())
+    base = Path(tempfile.gettempdir())  # OSError where there is none: told by temp_folder
     pattern = re.compile(re.escape(prefix) + r"(\d+)-[^/]+")
     with contextlib.suppress(OSError):
         for name in os.listdir(base):

@@ -101,6 +101,23 @@ def _tolerate_corrupt_files() -> None:
 
     index_file._load_index, index_file._load_data = _load_index, _load_data  # type: ignore[method-assign]
 
+    # A cache file that cannot be replaced (a folder in its place, a read-only file system):
+    # the kernel compiled in this process runs, and one note says it is not kept.
+    save = caching.Cache.save_overload
+    told: list[bool] = []
+
+    def save_overload(self, sig, data):
+        try:
+            save(self, sig, data)
+        except OSError as exc:
+            if not told:
+                told.append(True)
+                with contextlib.suppress(OSError, ValueError):
+                    print(f"pendulab: note: a compiled kernel cannot be cached ({exc.strerror or exc}: "
+                          f"{exc.filename}); it is compiled again on the next run", file=sys.stderr)
+
+    caching.Cache.save_overload = save_overload  # type: ignore[method-assign]
+
 
 def setup(py_file: str) -> str:
     """Make ``cache=True`` work for the kernels of ``py_file``; return what was done:
@@ -112,8 +129,8 @@ def setup(py_file: str) -> str:
     how = "default"
     if not _usable(py_file):
         uid = os.getuid() if hasattr(os, "getuid") else 0
-        folder = os.path.join(tempfile.gettempdir(), f"pendulab-numba-cache-{uid}")
-        try:
+        try:  # gettempdir raises where no temporary folder is writable: then caching is off
+            folder = os.path.join(tempfile.gettempdir(), f"pendulab-numba-cache-{uid}")
             os.makedirs(folder, mode=0o700, exist_ok=True)
             st = os.lstat(folder)  # ours, and not a link another user planted in a shared /tmp
             mine = st.st_uid == uid and not os.path.islink(folder)
