@@ -489,3 +489,103 @@ def test_a_tower_of_combining_marks_is_refused():
     with pytest.raises(InputError, match="at most 4 accents on a letter"):
         inputs.names("names", "A" + "\u0301" * 5, 1)
     assert inputs.names("names", "A" + "\u0301" * 4, 1)
+
+
+# --- smaller holes -----------------------------------------------------------------------------------
+
+
+def test_the_groups_read_from_stdin_cannot_be_the_output(tmp_path):
+    groups = groups_file(tmp_path, 1).rename(tmp_path / "groups.csv")
+    before = groups.read_text()
+    with open(groups) as f:
+        res = pendulab("key", "--groups", "-", "--output", groups, stdin=f)
+    assert res.returncode == 2
+    one_line(res, "--output", "other than the groups file", "standard input reads it")
+    assert groups.read_text() == before
+
+
+def test_a_silent_stdin_pipe_times_out(monkeypatch, cli):
+    from pendulab.jobs import key
+
+    monkeypatch.setattr(key, "READ_TIMEOUT", 0.3)
+    r, w = os.pipe()  # a writer that never writes (``sleep 40 | pendulab key --groups -``)
+    try:
+        with os.fdopen(r, "r") as stdin:
+            monkeypatch.setattr(sys, "stdin", stdin)
+            res = cli("key", "--groups", "-")
+    finally:
+        os.close(w)
+    assert res.code == 2 and "nothing came in 0.3 s" in res.err, res.err
+
+
+def test_the_phase_portrait_cannot_overwrite_figure_1(cli, tmp_path):
+    res = cli("simulate", "--plot", tmp_path / "f.png", "--phase", f"{tmp_path}/./f.png")
+    assert res.code == 2 and "--phase" in res.err and "other than --plot's" in res.err, res.err
+    assert not (tmp_path / "f.png").exists()
+
+
+# --- every environment -------------------------------------------------------------------------------
+
+
+@pytest.mark.parametrize(("name", "value"), [("NUMBA_NUM_THREADS", "0"), ("NUMBA_NUM_THREADS", "-3"),
+                                             ("NUMBA_NUM_THREADS", "lots"), ("NUMBA_OPT", "9")])
+def test_odd_numba_settings_are_one_note_and_the_work_done(name, value):
+    res = pendulab("sweep", "--amplitude", "0.1:1:4", "--step", "1e-2", env={name: value})
+    assert res.returncode == 0, res.stderr.decode()
+    assert res.stderr.decode().splitlines() == [
+        f"pendulab: note: {name}={value} is not allowed "
+        f"({'a whole number >= 1' if name == 'NUMBA_NUM_THREADS' else '0, 1, 2, 3 or max'}): "
+        "ignored, numba's default is used"]
+    assert res.stdout
+
+
+def test_allowed_numba_settings_are_kept():
+    from pendulab.core.environ import odd_numba_settings
+
+    env = {"NUMBA_NUM_THREADS": "2", "NUMBA_OPT": "max"}
+    assert odd_numba_settings(env) == [] and env == {"NUMBA_NUM_THREADS": "2", "NUMBA_OPT": "max"}
+
+
+@pytest.mark.slow
+def test_no_writable_temporary_folder_is_one_line(request):
+    """/tmp and /var/tmp read-only (a private mount namespace, root only), the current folder
+    too: the key's PDF needs a temporary folder and says so in one line; a command that needs
+    none works."""
+    pytest.importorskip("typst")
+    import shutil
+    import tempfile
+
+    if not os.path.isdir("/dev/shm"):
+        pytest.skip("no /dev/shm to hold the test's files outside /tmp")
+    tmp_path = Path(tempfile.mkdtemp(dir="/dev/shm"))  # /tmp is hidden in the namespace
+    request.addfinalizer(lambda: shutil.rmtree(tmp_path, ignore_errors=True))
+    groups = groups_file(tmp_path, 1)
+    script = ("mount -t tmpfs -o ro tmpfs /tmp && mount -t tmpfs -o ro tmpfs /var/tmp && cd /proc && "
+              f"exec {sys.executable} -m pendulab \"$@\"")
+    def run(*args):
+        return subprocess.run(["unshare", "-m", "sh", "-c", script, "sh", *map(str, args)], capture_output=True,
+                              timeout=300, env={**os.environ, "TMPDIR": "/tmp"})
+
+    probe = subprocess.run(["unshare", "-m", "true"], capture_output=True)
+    if probe.returncode != 0:
+        pytest.skip("no private mount namespace here (unshare -m needs root)")
+    res = run("key", "--groups", groups, "--output", tmp_path / "k.pdf")
+    assert res.returncode == 1
+    one_line(res, "pendulab key: error: cannot write to a temporary folder: none is writable")
+    assert not (tmp_path / "k.pdf").exists()
+    assert run("simulate", "--t-max", "1").returncode == 0
+
+
+@pytest.mark.slow
+@pytest.mark.parametrize("kind", ["nbi", "nbc"])
+def test_a_cache_file_replaced_by_a_folder_is_compiled_again(tmp_path, kind):
+    cache = tmp_path / "cache"
+    env = {"NUMBA_CACHE_DIR": str(cache)}
+    assert pendulab("simulate", "--t-max", "0.2", env=env).returncode == 0
+    files = sorted(cache.rglob(f"*.{kind}"))
+    assert files
+    for f in files:
+        f.unlink()
+        f.mkdir()
+    res = pendulab("simulate", "--t-max", "0.2", env=env)
+    assert res.returncode == 0 and b"Traceback" not in res.stderr and len(res.stderr.splitlines()) <= 1, res.stderr

@@ -1,6 +1,8 @@
 """Commands of the foundation: ``period``, ``simulate``, ``estimate``, ``length``."""
 from __future__ import annotations
 
+import os
+
 import click
 
 from ..core.cases import (
@@ -138,6 +140,10 @@ def simulate(length, amplitude, step, t_max, t0, digits, as_csv, plot, phase, me
     for name, path in (("plot", plot), ("phase", phase)):
         if path:
             check_plot_path(name, path)
+    if plot and phase and os.path.realpath(plot) == os.path.realpath(phase):  # Figure 1 would be overwritten
+        from ..core.errors import InputError, shown
+
+        raise InputError("phase", shown(phase), "a file other than --plot's (both figures would be written to it)")
     tr = run(float(length), float(amplitude), float(step), t_max, t0, float(g), method)
     if plot:
         save_plot(lambda ax: _plots().time_series(tr, ax), plot)

@@ -39,9 +39,8 @@ def key(groups_file: str, output: str | None, as_json: bool, template: str | Non
         check_writable("output", output)
         if fmt == "csv":
             check_writable("output", answer.class_path(output))  # written beside it
-        if groups_file != "-":
-            for path in (output, answer.class_path(output)) if fmt == "csv" else (output,):
-                check_not_input("output", path, "groups", groups_file)
+        for path in (output, answer.class_path(output)) if fmt == "csv" else (output,):
+            check_not_input("output", path, "groups", groups_file)
         if fmt == "pdf":
             from ..core.extras import require
 

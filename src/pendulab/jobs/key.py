@@ -164,10 +164,14 @@ def _read_capped(path: str) -> bytes:
     import stat
 
     if path == "-":
-        data = sys.stdin.buffer.read(MAX_FILE_BYTES + 1)
-        if len(data) > MAX_FILE_BYTES:
-            raise _TooBig
-        return data
+        try:
+            fd = sys.stdin.buffer.fileno()
+        except (AttributeError, OSError, ValueError):  # no descriptor (a test's stream; closed at start)
+            data = sys.stdin.buffer.read(MAX_FILE_BYTES + 1)
+            if len(data) > MAX_FILE_BYTES:
+                raise _TooBig from None
+            return data
+        return _read_fd(fd)
     fd = os.open(path, os.O_RDONLY | os.O_NONBLOCK)  # a named pipe: no wait for a writer
     try:
         st = os.fstat(fd)
@@ -193,6 +197,25 @@ def _read_capped(path: str) -> bytes:
         raise _TooBig
     finally:
         os.close(fd)
+
+
+def _read_fd(fd: int) -> bytes:
+    """At most :data:`MAX_FILE_BYTES` bytes of standard input, waiting at most
+    :data:`READ_TIMEOUT` s for each block (``sleep 40 | pendulab key --groups -`` ends, as
+    ``/dev/stdin`` does); the descriptor stays blocking (its file is the shell's too)."""
+    import select
+
+    chunks: list[bytes] = []
+    size = 0
+    while size <= MAX_FILE_BYTES:
+        if not select.select([fd], [], [], READ_TIMEOUT)[0]:
+            raise TimeoutError
+        chunk = os.read(fd, min(1 << 20, MAX_FILE_BYTES + 1 - size))
+        if not chunk:
+            return b"".join(chunks)
+        chunks.append(chunk)
+        size += len(chunk)
+    raise _TooBig
 
 
 def read_groups(path: str | os.PathLike) -> list[tuple[int, ...]]:
