@@ -75,7 +75,7 @@ def test_programs_are_plain_short_and_commented():
         tree = ast.parse(text)
         imported = {a.name.split(".")[0] for n in ast.walk(tree) if isinstance(n, ast.Import) for a in n.names}
         imported |= {n.module.split(".")[0] for n in ast.walk(tree) if isinstance(n, ast.ImportFrom)}
-        allowed = {"math", "sys", "decimal", "numpy", "scipy", "mpmath", "agm", "taylor", "length"}
+        allowed = {"math", "sys", "decimal", "numpy", "scipy", "mpmath", "agm", "taylor", "length", "digits"}
         assert imported <= allowed, (name, imported - allowed)
         assert ast.get_docstring(tree), name
         assert max(len(line) for line in text.splitlines()) <= 88, name  # no line wraps in the report
@@ -85,13 +85,14 @@ def test_programs_are_plain_short_and_commented():
 @pytest.mark.parametrize("students", [EXAMPLE, [99999, 1]])
 def test_each_program_runs_without_pendulab(written, students):
     for name in coursework.PROGRAMS:
-        assert run(written, name, *students).strip(), name
+        if name != "digits.py":  # the shared printing rule: it has nothing of its own to print
+            assert run(written, name, *students).strip(), name
     out = run(written, "problem3.py", *students)
     r = problems.problem3(tuple(students))
-    assert f"l = {r.group.length_text} m, T^ = {r.t_hat!r} s" in out
+    assert f"l = {r.group.length_text} m, T^ = {r.t_hat:.15g} s" in out
     assert f"t_max = {r.plot_t_max:.6g} s" in out
     for e in r.estimates:
-        assert repr(e.linear) in out and repr(e.cubic) in out
+        assert f"{e.linear:.12g}" in out and f"{e.cubic:.12g}" in out
     if students == EXAMPLE:
         assert "T in [5, 5.2]" in out  # the h = 0.2 simulation returns to P
     else:
@@ -232,12 +233,15 @@ def test_problem5_is_the_engines_to_rounding():
 
 # ----------------------------------------------------------------------------- Portuguese
 def _code_only(text: str) -> str:
-    """The program's AST without docstrings, and its lines without comments."""
+    """The program's AST without its strings (docstrings, printed words), and its lines
+    without comments: what the Portuguese set may change."""
     import io
     import tokenize
 
     tree = ast.parse(text)
     for node in ast.walk(tree):
+        if isinstance(node, ast.Constant) and isinstance(node.value, str):
+            node.value = ""
         body = getattr(node, "body", None)
         if isinstance(body, list) and body and isinstance(body[0], ast.Expr) and isinstance(
                 getattr(body[0], "value", None), ast.Constant) and isinstance(body[0].value.value, str):
@@ -247,7 +251,7 @@ def _code_only(text: str) -> str:
     return ast.dump(tree) + "\n".join(tokens)
 
 
-def test_portuguese_programs_differ_in_comments_only(tmp_path):
+def test_portuguese_programs_differ_in_comments_docstrings_and_printed_words_only(tmp_path):
     import json
     from importlib import resources
 

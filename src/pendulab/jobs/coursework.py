@@ -5,7 +5,7 @@ with the standard library, numpy, scipy and mpmath only, never this package: the
 runs them for its coursework numbers and prints them whole, ``pendulab programs`` writes
 them out, and the tests check the engine against them. Each runs as ``python FILE
 [STUDENT ...]`` from the folder that holds them all (a problem's program imports the
-shared methods ``agm``, ``taylor`` and ``length`` beside it).
+shared methods ``agm``, ``taylor``, ``length`` and ``digits`` beside it).
 
 The Portuguese set differs from the English one in its comments and docstrings only:
 ``programs/pt.json`` maps each such English line to its translation.
@@ -24,10 +24,11 @@ from types import ModuleType
 from ..core.errors import InputError
 
 #: The programs in the order the report prints them: shared methods first.
-PROGRAMS = ("length.py", "agm.py", "taylor.py", "problem1.py", "problem2.py", "problem3.py",
+PROGRAMS = ("digits.py", "length.py", "agm.py", "taylor.py", "problem1.py", "problem2.py", "problem3.py",
             "problem4.py", "problem5.py")
 #: How to run each one (the appendix's header line).
 USAGE = {
+    "digits.py": "(imported by the problems' programs)",
     "length.py": "python length.py [STUDENT ...]",
     "agm.py": "python agm.py [STUDENT ...]",
     "taylor.py": "python taylor.py",
@@ -38,6 +39,16 @@ USAGE = {
     "problem5.py": "python problem5.py",
 }
 LANGUAGES = ("en", "pt")
+#: The words of :data:`USAGE` in each language other than English.
+_USAGE_WORDS = {"pt": {"STUDENT": "ALUNO", "(imported by the problems' programs)": "(importado pelos programas)"}}
+
+
+def usage(name: str, lang: str = "en") -> str:
+    """How to run program ``name``, in ``lang`` (the appendix's header line)."""
+    text = USAGE[name]
+    for word, translated in _USAGE_WORDS.get(lang, {}).items():
+        text = text.replace(word, translated)
+    return text
 
 
 def _folder():

@@ -20,4 +20,4 @@ if __name__ == "__main__":  # T^ of the group's pendulum, alpha = 4 pi/5
     from length import group_length
     l_text = group_length([int(s) for s in sys.argv[1:]] or [262, 407, 634])[2]
     print(f"l = {l_text} m, alpha = 4 pi/5:",
-          f"T^ = {t_hat(float(l_text), 4 * math.pi / 5)!r} s")
+          f"T^ = {t_hat(float(l_text), 4 * math.pi / 5):.15g} s")

@@ -5,6 +5,8 @@ l = 115.2 cm +- 0.3 cm, T = 2.1536 s +- 2e-4 s.
 import math
 from decimal import ROUND_HALF_UP, Decimal
 
+from digits import up
+
 L, DL = 1.152, 0.003  # m
 T, DT = 2.1536, 2e-4  # s
 
@@ -41,8 +43,11 @@ def solve():
 
 if __name__ == "__main__":
     r = solve()
-    print(f"g = {r['g']!r} m/s^2, dg/dl = {r['dg_dl']:.8g}, dg/dT = {r['dg_dt']:.8g}")
-    print(f"1(a) |e_g| <= {r['abs_error']:.4g} m/s^2, |e_g|/g <= {r['rel_error']:.4g}")
+    print(f"g = {r['g']:.10g} m/s^2,",
+          f"dg/dl = {r['dg_dl']:.8g}, dg/dT = {r['dg_dt']:.8g}")
+    # the bounds rounded up, so that they stay bounds
+    print(f"1(a) |e_g| <= {up(r['abs_error'], 4)} m/s^2,",
+          f"|e_g|/g <= {up(r['rel_error'], 4)}")
     print(f"1(b) g in [{r['g_min']:.8g}, {r['g_max']:.8g}],",
-          f"worst error {r['worst']:.4g}: {r['digits']} significant digits,",
+          f"worst error {up(r['worst'], 4)}: {r['digits']} significant digits,",
           f"g = {r['g_text']} m/s^2")

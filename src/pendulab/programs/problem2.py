@@ -5,6 +5,8 @@ f'(alpha) = (2 pi/p) sin(alpha)/8 and f''(alpha) = (2 pi/p) cos(alpha)/8.
 """
 import math
 
+from digits import right
+
 G, L, TARGET = 9.80665, 0.5, 1.5
 T0 = 2 * math.pi / math.sqrt(G / L)  # 2 pi/p, the small-angle period
 U = 2.0**-53  # the unit roundoff of the doubles
@@ -61,11 +63,14 @@ if __name__ == "__main__":
           f"(b - a = {b - a:.6g}); all conditions hold: {holds}")
     x0 = a if f(a) * d2f(a) > 0 else b  # Fourier: start at the end where f f'' > 0
     xs, delta = newton(x0)
+    # each iterate to the rounding level delta (in degrees, plus the conversion's)
+    deg = math.degrees(delta) + 2 * U * math.degrees(xs[0])
     for k, x in enumerate(xs):
-        print(f"     x_{k} = {x!r} rad = {math.degrees(x)!r} degrees")
+        print(f"     x_{k} = {right(x, delta)} rad",
+              f"= {right(math.degrees(x), deg)} degrees")
     c = abs(d2f(xs[-1]) / (2 * df(xs[-1])))  # the limit of q_k, |f''(z) / (2 f'(z))|
     # 2(b): quadratic, so |z - x_N| ~ C |x_N - x_(N-1)|^2, plus the rounding level
-    print(f"2(b) |alpha - x_N| <= {c * (xs[-1] - xs[-2]) ** 2 + delta:.2e}")
+    print(f"2(b) estimate |alpha - x_N| ~ {c * (xs[-1] - xs[-2]) ** 2 + delta:.1e}")
     q, rho, k_max = quotients(xs, delta)
     for k in range(len(q)):
         print(f"2(c) q_{k} = {q[k]:.10f}, relative rounding error {rho[k]:.1e}")

@@ -7,7 +7,10 @@ through the points (z2_k, t_k) around the change estimate the t at which z2 = 0.
 import math
 import sys
 
+import mpmath
+
 from agm import t_hat
+from digits import right
 from length import group_length
 from taylor import taylor
 
@@ -26,17 +29,22 @@ def sign_change(z1, z2):
             return j, None
     return None, None
 
-def inverse_cubic(x, y):
-    """p(0) for the cubic p through (x_k, y_k), k = 0..3, and the error estimate
-    e(0) = f^(4)(xi)/4! (0-x0)(0-x1)(0-x2)(0-x3), f^(4)(xi)/4! ~ y[x0..x4]."""
-    c = list(y)  # Newton's divided differences y[x0], y[x0,x1], ..., y[x0..x4]
+def cubic_at_zero(x, y):
+    """Newton's divided differences c = y[x0], y[x0,x1], ..., y[x0..x4] of the five
+    points, p(0) for the cubic p through the first four, and (0-x0)...(0-x3)."""
+    c = list(y)
     for k in range(1, 5):
         for i in range(4, k - 1, -1):
             c[i] = (c[i] - c[i - 1]) / (x[i] - x[i - k])
     p = c[3]
     for k in (2, 1, 0):  # Horner: p(0) = c0 + (0-x0)(c1 + (0-x1)(c2 + (0-x2) c3))
-        p = p * (0.0 - x[k]) + c[k]
-    prod = (0.0 - x[0]) * (0.0 - x[1]) * (0.0 - x[2]) * (0.0 - x[3])
+        p = p * (0 - x[k]) + c[k]
+    return c, p, (0 - x[0]) * (0 - x[1]) * (0 - x[2]) * (0 - x[3])
+
+def inverse_cubic(x, y):
+    """p(0) for the cubic p through (x_k, y_k), k = 0..3, and the error estimate
+    e(0) = f^(4)(xi)/4! (0-x0)(0-x1)(0-x2)(0-x3), f^(4)(xi)/4! ~ y[x0..x4]."""
+    c, p, prod = cubic_at_zero(x, y)
     # y[x0..x4] = sum_k y_k / prod_(i!=k)(x_k - x_i): rounding each time y_k (half
     # an ulp) alone moves e(0) by up to this much
     rounding = abs(prod) * math.fsum(
@@ -53,6 +61,27 @@ def period(l, h, reference):
     x, y = [z2[k] for k in nodes], [t[k] for k in nodes]
     return {"h": h, "j": j, "bracket": (t[j], t[j + 1]), "z2": x, "t": y,
             "linear": t[j] + h * z2[j] / (z2[j] - z2[j + 1]), **inverse_cubic(x, y)}
+
+def rounding_errors(l_text, r, dps=30):
+    """3(d): how far rounding moved the doubles of the table, its coefficients, p(0)
+    and e(0): (3) and the divided differences again in dps-digit arithmetic (mpmath),
+    from the inputs as written (l, h, g, alpha = 4 pi/5) and t_k = k h exactly."""
+    nodes = [round(t / r["h"]) for t in r["t"]]
+    with mpmath.workdps(dps):
+        h, c = mpmath.mpf(repr(r["h"])), -mpmath.mpf("9.80665") / mpmath.mpf(l_text)
+        z1, z2, at = 4 * mpmath.pi / 5, mpmath.mpf(0), {}
+        for i in range(max(nodes) + 1):
+            at[i] = z2
+            s = mpmath.sin(z1)
+            z1, z2 = (z1 + h * z2 + h * h / 2 * c * s,
+                      z2 + h * c * s + h * h / 2 * c * z2 * mpmath.cos(z1))  # (3)
+        x = [at[k] for k in nodes]
+        coef, p0, prod = cubic_at_zero(x, [k * h for k in nodes])
+        e = {"z2": [abs(float(a - b)) for a, b in zip(r["z2"], x)],
+             "t": [abs(float(a - k * h)) for a, k in zip(r["t"], nodes)],
+             "coef": [abs(float(a - b)) for a, b in zip(r["coef"], coef)],
+             "p0": abs(float(r["p0"] - p0)), "e0": abs(float(r["e0"] - coef[4] * prod))}
+    return e
 
 def plot_t_max(l, reference, h=0.2):
     """3(b): 1.25 times the first event of the h = 0.2 simulation over 4 T^: its
@@ -74,24 +103,26 @@ if __name__ == "__main__":
     l = float(l_text)
     reference = t_hat(l, ALPHA)
     t_max, j, over, t = plot_t_max(l, reference)
-    print(f"3(b) l = {l_text} m, T^ = {reference!r} s, t_max = {t_max:.6g} s; h = 0.2:",
+    print(f"3(b) l = {l_text} m, T^ = {reference:.15g} s, t_max = {t_max:.6g} s; h = 0.2:",
           f"T in [{t[j]:.6g}, {t[j + 1]:.6g}]" if j is not None else
           f"over the top at t = {t[over]:.6g}" if over is not None else "no return")
-    print("3(c)  h       j  bracket        linear              error      p(0)")
+    print("3(c)  h       j  bracket        linear          error      p(0)")
     rows = [period(l, h, reference) for h in STEPS]
     for r in rows:
         print(f"{r['h']:6.0e} {r['j']:6d}  {r['bracket'][0]:.4f} {r['bracket'][1]:.4f}",
-              f"{r['linear']!r:<19} {abs(r['linear'] - reference):.3e}  {r['p0']!r}")
+              f"{r['linear']:<15.12g} {abs(r['linear'] - reference):.3e}  {r['p0']:.12g}")
     for a, b in zip(rows, rows[1:]):
         e0, e1 = abs(a["linear"] - reference), abs(b["linear"] - reference)
         print(f"     order from h = {a['h']:.0e} to {b['h']:.0e}:",
               f"{order(e0, e1, a['h'], b['h']):.2f}")
     r = rows[STEPS.index(1e-3)]
+    e = rounding_errors(l_text, r)  # only the digits rounding left right are printed
     print("3(d) h = 1e-3: z2_k, t_k, divided differences (nodes j-1..j+2, j-2)")
     for k in range(5):
-        print(f"    {r['z2'][k]!r:<24} {r['t'][k]:.3f}  {r['coef'][k]!r}")
+        print(f"    {right(r['z2'][k], e['z2'][k]):<18} {r['t'][k]:.3f}",
+              right(r["coef"][k], e["coef"][k]))
     error = abs(r["p0"] - reference)  # the Taylor method's error in the period
     small = max(abs(r["e0"]), r["rounding"]) < NEGLIGIBLE * error
-    print(f"    p(0) = {r['p0']!r}, e(0) ~ {r['e0']:.3e}",
+    print(f"    p(0) = {r['p0']:.12g}, e(0) ~ {right(r['e0'], e['e0'])}",
           f"(rounding {r['rounding']:.2e}); |p(0) - T^| = {error:.3e}:",
           "negligible" if small else "not negligible")

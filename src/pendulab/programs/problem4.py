@@ -9,6 +9,7 @@ from decimal import ROUND_HALF_UP, Decimal
 import numpy as np
 
 from agm import t_hat
+from digits import up
 from taylor import taylor
 
 L, ALPHA, H = 3.5, math.pi / 4, 0.01
@@ -30,10 +31,14 @@ def normal_equations(t, y):
     """4(b)-(c): E(c) = sum_j (y_j - sum_i c_i phi_i(t_j))^2 is least where its
     gradient is 0: A c = r, A_ik = sum_j phi_i(t_j) phi_k(t_j), r_i = sum_j phi_i(t_j)
     y_j. A = Phi^T Phi is symmetric, positive definite for independent columns."""
+    a, r = products(t, y)
+    return round6(a), round6(r)
+
+def products(t, y):
+    """A = Phi^T Phi and r = Phi^T y before rounding; A made exactly symmetric."""
     phi = basis(t)
     a = phi.T @ phi
-    a = 0.5 * (a + a.T)  # exactly symmetric (BLAS may sum the triangles apart)
-    return round6(a), round6(phi.T @ np.asarray(y))
+    return 0.5 * (a + a.T), phi.T @ np.asarray(y)
 
 def cholesky(a):
     """4(c): A = L L^T, L lower triangular, column by column:
@@ -63,21 +68,39 @@ def fit(t, y):
     residuals = np.asarray(y) - basis(t) @ coef
     return a, r, np.diag(low), coef, residuals
 
-if __name__ == "__main__":
-    t_max = math.ceil(t_hat(L, ALPHA))
-    t, z1, z2 = taylor(L, ALPHA, H, t_max)
-    print(f"4(a) t_max = {t_max} s, {len(t)} points; the last 10:")
-    for j in range(len(t) - 10, len(t)):
-        print(f"    {j:4d} {t[j]:5.2f} {z1[j]!r}")
+def checks(t, y, a):
+    """4(c)-(d) checked another way: the eigenvalues of the rounded A (its extremes and
+    condition number lambda_max/lambda_min), ||A - A_unrounded||_2, which by Weyl's
+    inequality bounds how far rounding moved each eigenvalue, and the least-squares
+    solution by the SVD (numpy.linalg.lstsq), which forms no normal equations."""
+    eig = np.linalg.eigvalsh(a)
+    moved = np.linalg.norm(a - products(t, y)[0], 2)
+    svd = np.linalg.lstsq(basis(t), np.asarray(y), rcond=None)[0]
+    return eig[0], eig[-1], eig[-1] / eig[0], moved, svd
+
+def answer(t_max):
+    """4(a)-(d) for the data on [0, t_max]."""
+    t, z1, _ = taylor(L, ALPHA, H, t_max)
     a, r, diag, coef, res = fit(t, z1)
-    print("4(c) A | r, symmetric:", bool(np.array_equal(a, a.T)))
-    for row, ri in zip(a, r):
-        print("    " + " ".join(f"{v:10.6f}" for v in row) + f" | {ri:.6f}")
-    print(f"     Cholesky: diagonal of L >= {diag.min():.6f} > 0;",
-          f"eigenvalues >= {np.linalg.eigvalsh(a)[0]:.6f} > 0")
-    for name, c in zip(NAMES, coef):
-        print(f"4(d) {name:5s} = {c:.10g}")
-    j = int(np.argmax(np.abs(res)))
-    print(f"     sum of squared deviations {math.fsum(res**2):.6e}")
-    print(f"     max |z1_j - phi(t_j)| = {abs(res[j]):.4e} at t = {t[j]:.2f}:",
-          "below" if abs(res[j]) < TOL else "not below", TOL)
+    return t, z1, a, r, diag, coef, res, checks(t, z1, a)
+
+if __name__ == "__main__":
+    # t_max = ceil(T^) as 4(a) says, and t_max = 6, the 601 points Y_0..Y_600 it names
+    for t_max in (math.ceil(t_hat(L, ALPHA)), 6):
+        t, z1, a, r, diag, coef, res, (low, high, cond, moved, svd) = answer(t_max)
+        print(f"4(a) t_max = {t_max} s, {len(t)} points; the last 10:")
+        for j in range(len(t) - 10, len(t)):
+            print(f"    {j:4d} {t[j]:5.2f} {z1[j]:.12g}")
+        print("4(c) A | r, symmetric:", bool(np.array_equal(a, a.T)))
+        for row, ri in zip(a, r):
+            print("    " + " ".join(f"{v:10.6f}" for v in row) + f" | {ri:.6f}")
+        print(f"     Cholesky pivots L_kk^2 > 0, the smallest {diag.min() ** 2:.6g};",
+              f"eigenvalues in [{low:.6g}, {high:.6g}], condition number {cond:.4g}")
+        print(f"     ||A - A unrounded||_2 <= {up(moved, 2)}")
+        print("4(d)        normal equations   lstsq (SVD)")
+        for name, c, c_svd in zip(NAMES, coef, svd):
+            print(f"     {name:5s} {c:<18.10g} {c_svd:.10g}")
+        j = int(np.argmax(np.abs(res)))
+        print(f"     sum of squared deviations {math.fsum(res**2):.6e}")
+        print(f"     max |z1_j - phi(t_j)| = {abs(res[j]):.4e} at t = {t[j]:.2f}:",
+              "below" if abs(res[j]) < TOL else "not below", TOL)

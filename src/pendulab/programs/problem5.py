@@ -9,8 +9,10 @@ import math
 import numpy as np
 
 from agm import G, t_hat
+from digits import right
 
 L, ALPHA = 3.5, 4 * math.pi / 5
+U = 2.0**-53  # the unit roundoff of double precision
 
 def integrand(theta):
     """1/sqrt(cos theta - cos alpha), with cos x - cos y = 2 sin((y+x)/2) sin((y-x)/2):
@@ -29,6 +31,23 @@ def gauss3(f, a, b, n):
 def period(n):
     return 4 * math.sqrt(L / (2 * G)) * gauss3(integrand, 0.0, ALPHA, n)
 
+def rounding_error(n):
+    """A bound on how far rounding moves period(n) from its exact-arithmetic value.
+    Each node theta is off by at most 4 u alpha (the operations that give it), which
+    moves f by |d ln f/d theta| = |cot((alpha - theta)/2) - cot((alpha + theta)/2)|/4
+    times that, large near alpha; each f carries 6 u of its own, the sum and the
+    factor 4 sqrt(l/(2g)) h/18 (log2(3n) + 8) u of the period's size."""
+    h = ALPHA / n
+    m = (np.arange(n) + 0.5) * h
+    d = math.sqrt(3 / 5) * h / 2
+    total = 0.0
+    for theta, w in ((m - d, 5), (m, 8), (m + d, 5)):
+        half_gap, half_sum = (ALPHA - theta) / 2, (ALPHA + theta) / 2
+        slope = abs(1 / np.tan(half_gap) - 1 / np.tan(half_sum)) / 4
+        total += float(np.sum(w * integrand(theta) * (4 * U * ALPHA * slope + 6 * U)))
+    size = 4 * math.sqrt(L / (2 * G)) * h / 18
+    return size * total + (math.log2(3 * n) + 8) * U * period(n)
+
 def table(reference):
     """5(b)-(d): n = 1, 10, ..., 10^5, the period by S_n, its error, and the rate p
     of error ~ n^(-p) from n/10 to n."""
@@ -42,9 +61,12 @@ def table(reference):
 if __name__ == "__main__":
     reference = t_hat(L, ALPHA)
     rows = table(reference)
-    print(f"T^ = {reference!r} s")
-    print(f"5(b) one application: {rows[0][1]!r} s, error {rows[0][2]:.3e}")
-    print(f"5(c) n = 10:          {rows[1][1]!r} s, error {rows[1][2]:.3e}")
+    print(f"T^ = {reference:.15g} s")
+    # each estimate with the digits its rounding error (rounding_error) leaves right
+    print(f"5(b) one application: {right(rows[0][1], rounding_error(1))} s,",
+          f"error {rows[0][2]:.3e}")
+    print(f"5(c) n = 10:          {right(rows[1][1], rounding_error(10))} s,",
+          f"error {rows[1][2]:.3e}")
     print("5(d)      n  estimate            error      rate")
     for n, p, e, rate in rows[1:]:
-        print(f"    {n:6d}  {p!r:<18}  {e:.3e}  {rate:.4f}")
+        print(f"    {n:6d}  {right(p, rounding_error(n)):<18}  {e:.3e}  {rate:.4f}")

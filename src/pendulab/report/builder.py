@@ -97,7 +97,7 @@ def appendix(lang: str) -> list[dict[str, str]]:
     """The programs the sections ran, whole, in ``lang``: file name, how to run it, source."""
     from ..jobs import coursework
 
-    return [{"name": name, "run": coursework.USAGE[name], "source": coursework.source(name, lang)}
+    return [{"name": name, "run": coursework.usage(name, lang), "source": coursework.source(name, lang)}
             for name in coursework.PROGRAMS]
 
 

@@ -24,8 +24,9 @@ def _finite(x: float | None) -> TypeGuard[float]:
 
 
 def num(x: float | None, n: int = 10) -> str:
-    """``x`` to ``n`` significant digits (:func:`pendulab.core.digits.significant`)."""
-    return typst(digits.significant(x, n)) if _finite(x) else "—"
+    """``x`` to ``n`` significant digits at most, trailing zeros dropped (``6.6``, not
+    ``6.60000``: a value known exactly, such as a multiple of the step)."""
+    return _g(x, n) if _finite(x) else "—"
 
 
 def sci(x: float | None, n: int = 3) -> str:
@@ -69,9 +70,23 @@ def distinct(a: float, b: float, n: int = 16) -> tuple[str, str]:
     from which each reads back as its own double: two different doubles never print the
     same digits."""
     for d in range(n, 17):
-        if float(digits.significant(a, d)) == a and float(digits.significant(b, d)) == b:
-            return num(a, d), num(b, d)
-    return num(a, 17), num(b, 17)
+        if float(f"{a:.{d}g}") == a and float(f"{b:.{d}g}") == b:
+            return _g(a, d), _g(b, d)
+    return _g(a, 17), _g(b, 17)
+
+
+def _g(x: float, n: int) -> str:
+    """``x`` to ``n`` significant digits, the shortest text (``g``: no trailing zeros)."""
+    text = f"{x:.{n}g}"
+    if "e" in text:
+        mant, exp = text.split("e")
+        return typst(f"{mant}e{int(exp)}")
+    return typst(text)
+
+
+def significant(x: float | None, n: int) -> str:
+    """``x`` to ``n`` significant digits, trailing zeros kept (a measured or computed value)."""
+    return typst(digits.significant(x, n)) if _finite(x) else "—"
 
 
 def fixed(x: float, decimals: int) -> str:

@@ -16,7 +16,7 @@ from decimal import ROUND_FLOOR, Decimal
 from typing import Any
 
 from .document import Doc
-from .markup import distinct, fixed, integer, num, sci, sci_beside, sci_up, up
+from .markup import distinct, err, fixed, integer, num, sci, sci_beside, sci_up, shown, up
 
 
 def programs() -> dict[str, Any]:
@@ -99,10 +99,12 @@ def problem2(doc: Doc, students: Sequence[int]) -> None:
     q, rho, k_max = p2.quotients(xs, delta)
     const = abs(p2.d2f(xs[-1]) / (2 * p2.df(xs[-1])))
     last = abs(xs[-1] - xs[-2])
+    # Each iterate to the rounding level delta (degrees: plus the conversion's), as problem2.py prints.
+    deg = math.degrees(delta) + 2 * p2.U * math.degrees(xs[0])
     rows = []
     for k, x in enumerate(xs):
         step = sci(xs[k + 1] - x, 3) if k + 1 < len(xs) else "—"
-        rows.append([integer(k), num(x, 16), num(math.degrees(x), 14), sci(p2.f(x), 3), step])
+        rows.append([integer(k), err(x, delta), err(math.degrees(x), deg), sci(p2.f(x), 3), step])
     doc.tables["p2a"] = rows
     # Every quotient with its relative rounding error: the reader sees q_k approach the
     # constant while that error is small, and where rounding takes over (2(c)).
@@ -116,9 +118,9 @@ def problem2(doc: Doc, students: Sequence[int]) -> None:
         # Below 90 degrees f' and f'' are monotone: f' least at a, f'' least at b.
         "p2.d1min": num(p2.df(a), 6), "p2.d2min": num(p2.d2f(b), 6), "p2.d2max": num(p2.d2f(a), 6),
         "p2.stepa": num(steps[0], 6), "p2.stepb": num(steps[1], 6), "p2.width": num(b - a, 6),
-        "p2.x0": num(x0, 12), "p2.x0deg": num(math.degrees(x0), 8),
-        "p2.alpha": num(xs[-1], 15), "p2.deg": num(math.degrees(xs[-1]), 13),
-        "p2.dfz": num(p2.df(xs[-1]), 6), "p2.last": sci_up(last, 3),
+        "p2.x0": err(x0, delta), "p2.x0deg": err(math.degrees(x0), deg),
+        "p2.alpha": err(xs[-1], delta), "p2.deg": err(math.degrees(xs[-1]), deg),
+        "p2.dfz": num(p2.df(xs[-1]), 6), "p2.last": sci(last, 3),
         "p2.errest": sci(const * last**2 + delta, 2), "p2.delta": sci(delta, 2),
         "p2.closed": sci_up(abs(closed - xs[-1]), 2) if closed != xs[-1] else "0",
         "p2.qtol": f"{p2.Q_TOL:.0%}",
@@ -167,7 +169,7 @@ def problem3(doc: Doc, students: Sequence[int]) -> None:
         "p3b.m": m,
         "p3b.count": integer(len(digits)),
         "p3b.l": l_text,
-        "p3b.t_hat": num(t_hat, 12),
+        "p3b.t_hat": shown("t_hat", t_hat),
         "p3b.tmax": num(t_max, 6),
         "p3b.n": integer(round(t_max / h)),
         "p3b.h": num(h, 3),
@@ -196,26 +198,29 @@ def problem3(doc: Doc, students: Sequence[int]) -> None:
     estimates = [p3.period(length, step, t_hat) for step in p3.STEPS]
     rows = []
     for k, e in enumerate(estimates):
-        shown = ["—", "—"] if k == 0 else [
+        orders_shown = ["—", "—"] if k == 0 else [
             fixed(p3.order(abs(estimates[k - 1][key] - t_hat), abs(e[key] - t_hat), p3.STEPS[k - 1], e["h"]), 2)
             for key in ("linear", "p0")]
         rows.append([
             sci(e["h"], 1), integer(e["j"]), f"[{num(e['bracket'][0], 8)}, {num(e['bracket'][1], 8)}]",
-            num(e["linear"], 12), sci(abs(e["linear"] - t_hat), 3), shown[0],
-            num(e["p0"], 12), sci(abs(e["p0"] - t_hat), 3), shown[1],
+            num(e["linear"], 12), sci(abs(e["linear"] - t_hat), 3), orders_shown[0],
+            num(e["p0"], 12), sci(abs(e["p0"] - t_hat), 3), orders_shown[1],
         ])
     doc.tables["p3c"] = rows
     orders: list[float] = [p3.order(abs(a["linear"] - t_hat), abs(b["linear"] - t_hat), a["h"], b["h"])
                            for a, b in zip(estimates, estimates[1:])]
     last = estimates[-1]
-    doc.set(**{"p3c.order": fixed(orders[-1], 2), "p3c.error": sci(abs(last["linear"] - t_hat), 2),
+    doc.set(**{"p3c.order": fixed(orders[-1], 2), "p3c.error": sci(abs(last["linear"] - t_hat), 3),
+               "p3c.last": num(last["linear"], 12),
                "p3c.h": sci(last["h"], 1), "p3c.first": fixed(orders[0], 2)})
 
     # 3(d): the inverse cubic interpolation with h = 1e-3.
     c = estimates[p3.STEPS.index(1e-3)]
     places = max(0, round(-math.log10(c["h"])))  # t_j = j h shown with the step's decimals
-    doc.tables["p3d"] = [[integer(k), num(c["z2"][k], 12), fixed(c["t"][k], places), num(c["coef"][k], 10)]
-                         for k in range(4)]
+    # Only the digits rounding left right (measured against (3) in 30 digits, as problem3.py prints).
+    e = p3.rounding_errors(l_text, c)
+    doc.tables["p3d"] = [[integer(k), err(c["z2"][k], e["z2"][k]), fixed(c["t"][k], places),
+                          err(c["coef"][k], e["coef"][k])] for k in range(4)]
     prod = 1.0
     for z in c["z2"][:4]:
         prod *= 0.0 - z
@@ -228,28 +233,31 @@ def problem3(doc: Doc, students: Sequence[int]) -> None:
         "p3d.j0": integer(c["j"] - 1),
         "p3d.j3": integer(c["j"] + 2),
         "p3d.jm2": integer(c["j"] - 2),
-        "p3d.value": num(c["p0"], 15),
-        "p3d.z4": num(c["z2"][4], 12),
+        "p3d.value": shown("estimate", c["p0"]),
+        "p3d.z4": err(c["z2"][4], e["z2"][4]),
         "p3d.t4": fixed(c["t"][4], places),
-        "p3d.dd": sci(c["dd4"], 6),
+        "p3d.dd": err(c["dd4"], e["coef"][4]),
         "p3d.prod": sci(prod, 6),
-        "p3d.errest": sci(c["e0"], 3),
-        "p3d.t_hat": num(t_hat, 15),
+        "p3d.errest": err(c["e0"], e["e0"]),
+        "p3d.moved": sci_up(e["e0"], 1),
+        "p3d.movedp": sci_up(e["p0"], 1),
+        "p3d.t_hat": shown("t_hat", t_hat),
         "p3d.taylor": sci(taylor_error, 3),
         "p3d.ratio": sci_beside(ratio, p3.NEGLIGIBLE, 1),
-        "p3d.c0": num(c["coef"][0], 10),
-        "p3d.c1": num(c["coef"][1], 10),
-        "p3d.c2": num(c["coef"][2], 10),
-        "p3d.c3": num(c["coef"][3], 10),
-        "p3d.x0": num(c["z2"][0], 10),
-        "p3d.x1": num(c["z2"][1], 10),
-        "p3d.x2": num(c["z2"][2], 10),
+        "p3d.c0": err(c["coef"][0], e["coef"][0]),
+        "p3d.c1": err(c["coef"][1], e["coef"][1]),
+        "p3d.c2": err(c["coef"][2], e["coef"][2]),
+        "p3d.c3": err(c["coef"][3], e["coef"][3]),
+        "p3d.x0": err(c["z2"][0], e["z2"][0]),
+        "p3d.x1": err(c["z2"][1], e["z2"][1]),
+        "p3d.x2": err(c["z2"][2], e["z2"][2]),
         "p3d.threshold": sci(p3.NEGLIGIBLE, 1),
         "p3d.rl": sci(c["rounding"], 2),
-        "p3d.bound": sci_up(bound, 2),
+        "p3d.bound": sci_up(bound + e["e0"], 1),  # with e(0)'s own digits: no more than it has
     })
     doc.choose("p3d.est", "resolved" if abs(c["e0"]) > c["rounding"] else "rounding")
     doc.choose("p3d.verdict", "negligible" if ratio < p3.NEGLIGIBLE else "not_negligible")
+    doc.set(**{"p3d.answer": doc.word("answers.yes" if ratio < p3.NEGLIGIBLE else "answers.no")})
 
 
 # ----------------------------------------------------------------------------- problem 4
@@ -272,29 +280,28 @@ def problem4(doc: Doc, students: Sequence[int]) -> None:
         t, z1, z2 = taylor.taylor(p4.L, p4.ALPHA, p4.H, t_max)
         a, rhs, diag, coef, res = p4.fit(t, z1)
         j = int(np.argmax(np.abs(res)))
+        low, high, cond, moved, svd = p4.checks(t, z1, a)
         fits[t_max] = {"t": t, "z1": z1, "z2": z2, "a": a, "r": rhs, "diag": diag, "coef": coef, "t_max": t_max,
-                       "ssd": math.fsum(res**2), "maxdev": abs(res[j]), "argmax": t[j]}
+                       "ssd": math.fsum(res**2), "maxdev": abs(res[j]), "argmax": t[j],
+                       "low": low, "high": high, "cond": cond, "moved": moved, "svd": svd}
     main, other = fits[math.ceil(t_hat)], fits[PROBLEM4_ALT_T_MAX]
     # Beyond the coursework, from the engine on the program's data: the eigenvalues, the
     # rounding's effect, the SVD solution, the exact motion between the data points; the figures.
     r = problems.problem4(taylor_data=(main["t"], main["z1"], main["z2"]))
     alt = problems.problem4(t_max=PROBLEM4_ALT_T_MAX, taylor_data=(other["t"], other["z1"], other["z2"]))
-    f = r.fit
     n = len(main["t"]) - 1
     doc.tables["p4a"] = [[integer(j), fixed(main["t"][j], 2), num(main["z1"][j], 12)] for j in range(n - 9, n + 1)]
     doc.tables["p4c_matrix"] = [[fixed(x, 6) for x in row] for row in main["a"]]
     doc.tables["p4c_rhs"] = [fixed(x, 6) for x in main["r"]]
     doc.tables["p4d"] = [[P4_NAMES.get(nm, nm), num(c, 10), num(c_ref, 10), num(c_alt, 10)]
-                         for nm, c, c_ref, c_alt in zip(p4.NAMES, main["coef"], f.reference_coefficients,
-                                                        other["coef"])]
-    d = f.definiteness
+                         for nm, c, c_ref, c_alt in zip(p4.NAMES, main["coef"], main["svd"], other["coef"])]
     doc.set(**{
-        "p4.l": num(p4.L, 4), "p4.T": num(t_hat, 12), "p4.tmax": num(main["t_max"], 6), "p4.h": num(p4.H, 3),
+        "p4.l": num(p4.L, 4), "p4.T": shown("t_hat", t_hat), "p4.tmax": num(main["t_max"], 6), "p4.h": num(p4.H, 3),
         "p4.n": integer(n), "p4.points": integer(n + 1),
         "p4.pivot": num(float(min(main["diag"])) ** 2, 6),
-        "p4.lmin": num(d.min_eigenvalue, 6), "p4.lmax": num(d.max_eigenvalue, 6), "p4.cond": num(d.condition_number, 4),
-        "p4.pert": sci_up(d.rounding_perturbation, 2),
-        "p4.shift": sci_up(float(np.max(np.abs(main["coef"] - f.reference_coefficients))), 2),
+        "p4.lmin": num(main["low"], 6), "p4.lmax": num(main["high"], 6), "p4.cond": num(main["cond"], 4),
+        "p4.pert": sci_up(main["moved"], 2),
+        "p4.shift": sci_up(float(np.max(np.abs(main["coef"] - main["svd"]))), 2),
         "p4.ssd": sci(main["ssd"], 6), "p4.maxdev": sci_beside(main["maxdev"], p4.TOL, 4), "p4.argmax": num(main["argmax"], 6),
         "p4.omega": num(2 * math.pi / t_hat, 6), "p4.exactdev": sci(r.exact_deviation, 3),
         "p4.exactat": num(r.exact_deviation_at, 6), "p4.taylor": sci(r.taylor_error, 3),
@@ -305,6 +312,7 @@ def problem4(doc: Doc, students: Sequence[int]) -> None:
         "p4.alt.argmax": num(other["argmax"], 6), "p4.alt.exactdev": sci(alt.exact_deviation, 3),
     })
     doc.choose("p4d.ii", "yes" if main["maxdev"] < p4.TOL else "no")
+    doc.set(**{"p4.answer": doc.word("answers.yes" if main["maxdev"] < p4.TOL else "answers.no")})
     doc.choose("p4.alt", "yes" if other["maxdev"] < p4.TOL else "no")
     w = doc.catalogue
     doc.figure("p4d_fit", lambda ax: fit(r, ax, title=False, labels=LABELS["fit"] | {"data": w["p4.fig.data"]}))
@@ -324,8 +332,8 @@ def problem5(doc: Doc, students: Sequence[int]) -> None:
     r = problems.problem5()
     sub = {row.n: row for row in r.rows}
     doc.tables["p5d"] = [[
-        integer(n), num(period, 16), sci(error, 3), fixed(rate, 4),
-        num(sub[n].substitution_estimate, 16), sci(sub[n].substitution_error, 2),
+        integer(n), err(period, p5.rounding_error(n)), sci(error, 3), fixed(rate, 4),
+        num(sub[n].substitution_estimate, 15), sci(sub[n].substitution_error, 2),
     ] for n, period, error, rate in table[1:]]
     w = doc.catalogue
 
@@ -342,9 +350,9 @@ def problem5(doc: Doc, students: Sequence[int]) -> None:
     single, ten, last = table[0], table[1], table[-1]
     conv = r.substitution_converged_n
     doc.set(**{
-        "p5.l": num(p5.L, 4), "p5.t_hat": num(t_hat, 15),
-        "p5.q1": num(single[1], 12), "p5.e1": sci(single[2], 3),
-        "p5.s10": num(ten[1], 12), "p5.e10": sci(ten[2], 3),
+        "p5.l": num(p5.L, 4), "p5.t_hat": shown("t_hat", t_hat),
+        "p5.q1": err(single[1], p5.rounding_error(1)), "p5.e1": sci(single[2], 3),
+        "p5.s10": err(ten[1], p5.rounding_error(10)), "p5.e10": sci(ten[2], 3),
         "p5.rate": fixed(last[3], 4),
         "p5.elast": sci(last[2], 3), "p5.nlast": integer(last[0]),
         "p5.floor": sci(r.rounding_floor, 1),
