@@ -103,14 +103,16 @@ if __name__ == "__main__":
     l = float(l_text)
     reference = t_hat(l, ALPHA)
     t_max, j, over, t = plot_t_max(l, reference)
-    print(f"3(b) l = {l_text} m, T^ = {reference:.15g} s, t_max = {t_max:.6g} s; h = 0.2:",
+    print(f"3(b) l = {l_text} m, T^ = {reference:.15g} s,",
+          f"t_max = {t_max:.6g} s; h = 0.2:",
           f"T in [{t[j]:.6g}, {t[j + 1]:.6g}]" if j is not None else
           f"over the top at t = {t[over]:.6g}" if over is not None else "no return")
     print("3(c)  h       j  bracket        linear          error      p(0)")
     rows = [period(l, h, reference) for h in STEPS]
     for r in rows:
         print(f"{r['h']:6.0e} {r['j']:6d}  {r['bracket'][0]:.4f} {r['bracket'][1]:.4f}",
-              f"{r['linear']:<15.12g} {abs(r['linear'] - reference):.3e}  {r['p0']:.12g}")
+              f"{r['linear']:<15.12g} {abs(r['linear'] - reference):.3e}",
+              f" {r['p0']:.12g}")
     for a, b in zip(rows, rows[1:]):
         e0, e1 = abs(a["linear"] - reference), abs(b["linear"] - reference)
         print(f"     order from h = {a['h']:.0e} to {b['h']:.0e}:",
@@ -119,8 +121,8 @@ if __name__ == "__main__":
     e = rounding_errors(l_text, r)  # only the digits rounding left right are printed
     print("3(d) h = 1e-3: z2_k, t_k, divided differences (nodes j-1..j+2, j-2)")
     for k in range(5):
-        print(f"    {right(r['z2'][k], e['z2'][k]):<18} {r['t'][k]:.3f}",
-              right(r["coef"][k], e["coef"][k]))
+        c = right(r["coef"][k], e["coef"][k]) if k else f"{r['t'][0]:.3f}"  # c0 = t_0
+        print(f"    {right(r['z2'][k], e['z2'][k]):<18} {r['t'][k]:.3f}  {c}")
     error = abs(r["p0"] - reference)  # the Taylor method's error in the period
     small = max(abs(r["e0"]), r["rounding"]) < NEGLIGIBLE * error
     print(f"    p(0) = {r['p0']:.12g}, e(0) ~ {right(r['e0'], e['e0'])}",

@@ -219,8 +219,10 @@ def problem3(doc: Doc, students: Sequence[int]) -> None:
     places = max(0, round(-math.log10(c["h"])))  # t_j = j h shown with the step's decimals
     # Only the digits rounding left right (measured against (3) in 30 digits, as problem3.py prints).
     e = p3.rounding_errors(l_text, c)
-    doc.tables["p3d"] = [[integer(k), err(c["z2"][k], e["z2"][k]), fixed(c["t"][k], places),
-                          err(c["coef"][k], e["coef"][k])] for k in range(4)]
+    # c0 = t[x0] is t_0 itself: printed as the times are
+    coef = [fixed(c["t"][0], places)] + [err(c["coef"][k], e["coef"][k]) for k in range(1, 5)]
+    doc.tables["p3d"] = [[integer(k), err(c["z2"][k], e["z2"][k]), fixed(c["t"][k], places), coef[k]]
+                         for k in range(4)]
     prod = 1.0
     for z in c["z2"][:4]:
         prod *= 0.0 - z
@@ -244,7 +246,7 @@ def problem3(doc: Doc, students: Sequence[int]) -> None:
         "p3d.t_hat": shown("t_hat", t_hat),
         "p3d.taylor": sci(taylor_error, 3),
         "p3d.ratio": sci_beside(ratio, p3.NEGLIGIBLE, 1),
-        "p3d.c0": err(c["coef"][0], e["coef"][0]),
+        "p3d.c0": coef[0],
         "p3d.c1": err(c["coef"][1], e["coef"][1]),
         "p3d.c2": err(c["coef"][2], e["coef"][2]),
         "p3d.c3": err(c["coef"][3], e["coef"][3]),
