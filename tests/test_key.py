@@ -267,11 +267,12 @@ def test_cli_csv_is_a_plain_table(class_file, tmp_path, capsys):
     for k in range(4):
         assert {f"3d_node{k}", f"3d_z2{k}", f"3d_t{k}", f"3d_coefficient{k}"} <= set(df)
     assert df["t_hat"][0] == pytest.approx(plain.t_hat(EXAMPLE_LENGTH), rel=1e-15)
-    # Every float cell is the shortest text that reads back as its double.
+    # Every float cell is the shortest text that reads back as its double; the key_ columns
+    # are the questions of pendulab mark in the report's printed digits.
     header = rows[0]
     for row in rows[1:]:
         for name, cell in zip(header, row):
-            if "." in cell and "_" in name and cell.replace(".", "").replace("-", "").replace("e", "").isdigit():
+            if not name.startswith("key_") and "." in cell and "_" in name and cell.replace(".", "").replace("-", "").replace("e", "").isdigit():
                 assert repr(float(cell)) == cell, (name, cell)
     # The class-wide answers beside it, a plain table too.
     side = pd.read_csv(tmp_path / "key-class.csv")

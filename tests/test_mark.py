@@ -336,3 +336,50 @@ def test_engine_lists_are_the_programs(students):
         t, z1, z2 = TAYLOR(length, P3.ALPHA, h, 1.5 * exact + 8 * h)
         run = simulate(length, P3.ALPHA, h, 1.5 * exact + 8 * h)
         assert run.t.tolist() == t and run.theta.tolist() == z1 and run.omega.tolist() == z2
+
+
+def test_the_same_digits_in_key_and_marked_sheet(tmp_path):
+    """A question's key prints the same in key.csv, key-class.csv, key --json and the marked
+    sheet: the report's digit policy (pendulab.core.digits)."""
+    from pendulab.core import digits
+    from pendulab.jobs.key import answer_key
+    from pendulab.report import key as key_out
+    from pendulab.report import mark as sheet
+
+    entries = parse_entries("262 407 634\n11111\n")
+    k = answer_key(entries)
+    d = key_out.document(k)
+    rows = list(csv.DictReader(io.StringIO(key_out.render(k, "csv").decode())))
+    marks = mark.mark_class(entries, [])
+    marked = sheet.sheet(marks)
+    printed = {(r[0], r[5]): r[7] for r in marked[1:]}
+    for g, row, qd in zip(k.groups, rows, d["questions"]["groups"]):
+        for q in qd["questions"]:
+            assert row[f"key_{q['column']}"] == q["key_text"] == printed[(str(g["line"]), q["column"])]
+    # 3(d)'s p(0) in the digits the report's policy gives an estimate of its rounding
+    q = next(x for x in mark.group_questions((262, 407, 634)) if x.column == "3d_p0")
+    assert mark.key_text(q) == digits.shown("estimate", q.key, q.slack)
+    # problem 5 of the key is the printed program's
+    rows5 = P5.table(AGM(P5.L, P5.ALPHA))
+    assert [r["estimate"] for r in d["common"]["problem5"]["rows"]] == [r[1] for r in rows5]
+    side = key_out._class_csv(k)
+    for q in mark.class_questions():
+        assert f"question {q.part},{q.column},{mark.key_text(q)}" in side
+
+
+@pytest.mark.slow
+def test_marked_sheet_pdf_and_text(tmp_path):
+    import pypdf
+
+    groups = tmp_path / "g.txt"
+    groups.write_text("262 407 634 | Ana Sá; João Simões; Maria Luís\n12121, 21212, 12121\n", encoding="utf-8")
+    tpl = tmp_path / "answers.csv"
+    assert main(["key", "--groups", str(groups), "--template", "-o", str(tpl)]) == 0
+    for out in (tmp_path / "m.pdf", tmp_path / "m.txt"):
+        assert main(["mark", "--groups", str(groups), "--answers", str(tpl), "-o", str(out), "--lang", "pt"]) == 0
+    text = " ".join(p.extract_text() for p in pypdf.PdfReader(tmp_path / "m.pdf").pages)
+    assert "Grupos: 2" in text and "262, 407, 634" in text and "sem resposta" in text
+    assert "o aluno 12121 aparece 2 vezes" in text.replace("\n", " ")
+    plain = (tmp_path / "m.txt").read_text(encoding="utf-8")
+    assert plain.startswith("line 1: 262 407 634 (Ana Sá; João Simões; Maria Luís)  0/")
+    assert "90-100 %" in plain

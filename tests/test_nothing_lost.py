@@ -42,7 +42,8 @@ def pendulab(*args, stdin=subprocess.DEVNULL, stdout=subprocess.PIPE, stderr=sub
 
 def groups_file(folder: Path, count: int) -> Path:
     path = folder / "groups.txt"
-    path.write_text("".join(f"{100 + i} {200 + 3 * i} {300 + 7 * i}\n" for i in range(count)))
+    # no student in two groups: the only line on stderr is the one under test
+    path.write_text("".join(f"{100 + i} {2000 + 3 * i} {5000 + 7 * i}\n" for i in range(count)))
     return path
 
 

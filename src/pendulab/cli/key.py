@@ -53,13 +53,11 @@ def key(groups_file: str, output: str | None, as_json: bool, template: str | Non
                                     lines=", ".join(map(str, lines))) for students, lines in again)
         warning = sentence("key.listed_again." + ("one" if len(again) == 1 else "many"), count=len(again), groups=listed)
         click.echo(f"pendulab: warning: {warning}", err=True)
-    repeated = answer.repeated_students(groups)
-    if repeated:
-        from ..report.key import repeated_words
+    from ..report.key import repeated_warning
 
-        for r in repeated:
-            for words in repeated_words(r.to_dict()):
-                click.echo(f"pendulab: warning: {words}", err=True)
+    repeated = repeated_warning(answer.repeated_students(groups))
+    if repeated:
+        click.echo(f"pendulab: warning: {repeated}", err=True)
     k = answer.answer_key(groups)
     if output is not None:
         from ..report.key import write_key
@@ -152,11 +150,11 @@ def mark(groups_file: str, answers_file: str, scheme_file: str | None, output: s
             from ..core.extras import require
 
             require("typst", "pendulab mark --output FILE.pdf")
-    from ..report.key import repeated_words
+    from ..report.key import repeated_warning
 
-    for r in answer.repeated_students(groups):
-        for words in repeated_words(r.to_dict(), lang):
-            click.echo(f"pendulab: warning: {words}", err=True)
+    repeated = repeated_warning(answer.repeated_students(groups), lang)
+    if repeated:
+        click.echo(f"pendulab: warning: {repeated}", err=True)
     marks = marking.mark_class(groups, rows, scheme, answers_file)
     if output is not None:
         sheet.write_marks(marks, output, lang, dialect)  # type: ignore[arg-type]

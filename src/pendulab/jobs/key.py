@@ -451,6 +451,11 @@ def common_answers() -> dict[str, Any]:
 
     p1, p2, p4, p5 = problems.problem1(), problems.problem2(), problems.problem4(), problems.problem5()
     p4_alt = problems.problem4(t_max=PROBLEM4_ALT_T_MAX)
+    from .coursework import load
+
+    programs = load()
+    program5 = programs["problem5.py"].table(programs["agm.py"].t_hat(p5.length, p5.amplitude))
+    assert [r[0] for r in program5] == [row.n for row in p5.rows]
     run = p2.run
     return {
         "problem1": {"g": p1.g, "dg_dl": p1.dg_dl, "dg_dT": p1.dg_dT, "abs_error": p1.abs_error,
@@ -464,11 +469,13 @@ def common_answers() -> dict[str, Any]:
                      "error_estimate": run.error_estimate},
         "problem4": _problem4(p4),
         "problem4_601": _problem4(p4_alt),
-        "problem5": {"t_hat": p5.t_hat, "single": p5.single, "composite10": p5.composite10,
-                     "rows": [{"n": row.n, "estimate": row.estimate, "error": row.error, "rate": row.rate,
+        # S_n, its error and rate as problem5.py prints them (the report's digits); the
+        # substitution's columns, beyond the coursework, from the engine
+        "problem5": {"t_hat": p5.t_hat, "single": program5[0][1], "composite10": program5[1][1],
+                     "rows": [{"n": row.n, "estimate": printed[1], "error": printed[2], "rate": printed[3],
                                "substitution_estimate": row.substitution_estimate,
                                "substitution_error": row.substitution_error}
-                              for row in p5.rows]},
+                              for row, printed in zip(p5.rows, program5)]},
     }
 
 

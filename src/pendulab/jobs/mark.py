@@ -90,7 +90,8 @@ class Question(Result):
 
     def to_dict(self) -> dict[str, Any]:
         return {"column": self.column, "part": self.part, "scope": self.scope, "kind": self.kind,
-                "key": self.key, "low": self.low, "high": self.high, "slack": self.slack, "decimals": self.decimals,
+                "key": self.key, "key_text": key_text(self), "low": self.low, "high": self.high,
+                "slack": self.slack, "decimals": self.decimals,
                 "relative_slack": self.relative_slack, "signless": self.signless,
                 "min_digits": self.min_digits, "freedom": self.freedom,
                 "alternatives": [a.to_dict() for a in self.alternatives]}
@@ -110,6 +111,35 @@ def _range(column: str, part: str, scope: Literal["class", "group"], key: float,
 def _choice(column: str, part: str, scope: Literal["class", "group"], key: Any, alts: list[Alternative],
             freedom: str, kind: Kind = "choice", **kw: Any) -> Question:
     return Question(column, part, scope, kind, key, tuple(alts), freedom, **kw)
+
+
+#: The report's digit policy (:data:`pendulab.core.digits.POLICY`) for each question's key:
+#: its printed digits, the same in the key, the marked sheet and the report.
+PRINTED = (("1b_g", "p1.g"), ("2_alpha_deg", "p2.iterate"), ("2_x0_deg", "p2.iterate"), ("2_q", "p2.quotient"),
+           ("2_constant", "p2.quotient"), ("2_error_estimate", "p2.error_estimate"), ("3a_", "p3.state"),
+           ("3b_t_hat", "t_hat"), ("3c_T", "estimate"), ("3c_error", "error"), ("3d_p0", "estimate"),
+           ("3d_divided", "p3.error_estimate"), ("3d_error_estimate", "p3.error_estimate"), ("4a_z1", "p3.state"),
+           ("4c_", "p4.normal"), ("4d_ssd", "p4.deviation"), ("4d_max", "p4.deviation"), ("4d_", "p4.coefficient"),
+           ("5d_error", "error"), ("5", "p5.estimate"))
+
+
+def key_text(q: Question) -> str:
+    """The key as printed: in the report's form for its quantity (the digits its rounding
+    allows, for an ``error`` form: its ``slack`` and the alternatives' spread), else as is."""
+    from ..core import digits
+
+    if isinstance(q.key, bool) or not isinstance(q.key, float):
+        return str(q.key)
+    quantity = next((name for prefix, name in PRINTED if q.column.startswith(prefix)), None)
+    if quantity is None:
+        return repr(q.key)
+    spread = 0.0 if q.low is None or q.high is None or q.kind != "range" else q.high - q.low
+    error = max(q.slack, spread if quantity not in ("p2.iterate",) else 0.0, math.ulp(q.key))
+    text = digits.shown(quantity, q.key, error)
+    if q.key != 0 and not any(ch in "123456789" for ch in digits.split(text)[0]):
+        # the error allows no digit in the fixed places shown: its first digit, with its sign
+        return digits.scientific(q.key, 1)
+    return text
 
 
 # --------------------------------------------------------------------------- the class's questions
@@ -608,9 +638,11 @@ class Verdict:
     digits: int = 1
     low: float | None = None
     high: float | None = None
+    key_text: str = ""
 
     def to_dict(self) -> dict[str, Any]:
         return {"column": self.column, "part": self.part, "answer": self.answer, "key": self.key,
+                "key_text": self.key_text,
                 "right": self.right, "code": self.code, "method": self.method, "detail": self.detail,
                 "points": self.points, "max_points": self.max_points, "freedom": self.freedom,
                 "min_digits": self.digits, "low": self.low, "high": self.high}
@@ -747,7 +779,7 @@ def mark_group(entry: Entry, row: AnswerRow | None, scheme: Scheme, duplicate_of
         worth = float(scheme.points.get(q.column, 1.0))
         verdicts.append(Verdict(q.column, q.part, text, q.key, right, code, None if alt is None else alt.method,
                                 None if alt is None else alt.detail, worth if right else 0.0, worth,
-                                q.freedom, digits, q.low, q.high))
+                                q.freedom, digits, q.low, q.high, key_text(q)))
     if not any(q.column == "3b_bracket_lo" for q in group_questions(entry.students)):
         for col in ("3b_bracket_lo", "3b_bracket_hi"):  # no return at h = 0.2: nothing to bracket
             text = answers.get(col, "")

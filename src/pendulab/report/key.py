@@ -37,7 +37,27 @@ def document(key: AnswerKey, lang: str = "en") -> dict[str, Any]:
     (``agreement``, ``why``) beside its codes."""
     d = key.to_dict()
     d["tolerances"] = [t.to_dict() | {"agreement": agreement(t, lang), "why": why(t, lang)} for t in TOLERANCES]
+    d["questions"] = questions(key)
     return d
+
+
+def questions(key: AnswerKey) -> dict[str, Any]:
+    """Every question as ``pendulab mark`` reads it (:mod:`pendulab.jobs.mark`): its column,
+    the printed programs' answer (``key``, and ``key_text`` in the report's digits) and what
+    each freedom of the coursework gives (``alternatives``, ``low``, ``high``)."""
+    from ..jobs.mark import class_questions, group_questions
+
+    return {"class": [q.to_dict() for q in class_questions()],
+            "groups": [{"line": g["line"], "questions": [q.to_dict() for q in group_questions(g["students"])]}
+                       for g in key.groups]}
+
+
+def _group_key(g: dict[str, Any], column: str) -> str:
+    """A group's key for the answers file's ``column``, in the report's digits ("" where the
+    group has no such answer: no bracket when the h = 0.2 simulation does not return)."""
+    from ..jobs.mark import group_questions, key_text
+
+    return next((key_text(q) for q in group_questions(g["students"]) if q.column == column), "")
 
 
 def repeated_words(r: dict[str, Any], lang: str = "en") -> list[str]:
@@ -49,6 +69,15 @@ def repeated_words(r: dict[str, Any], lang: str = "en") -> list[str]:
         out.append(sentence("key.repeated.across", lang, student=r["student"], line=r["line"],
                             lines=", ".join(map(str, r["other_lines"]))))
     return out
+
+
+def repeated_warning(repeated: list, lang: str = "en") -> str | None:
+    """One line for every repeated student of a class (:func:`pendulab.jobs.key.repeated_students`),
+    or None when there is none."""
+    words = [w for r in repeated for w in repeated_words(r.to_dict(), lang)]
+    if not words:
+        return None
+    return sentence("key.repeated.summary", lang, count=len({r.student for r in repeated}), flags="; ".join(words))
 
 
 def repeated_cell(g: dict[str, Any], lang: str = "en") -> str | None:
@@ -125,6 +154,11 @@ def csv_columns(key: AnswerKey) -> list[tuple[str, Any]]:
             cols.append((f"3d_{name}{k}", lambda g, k=k, name=name: g["interpolation"]["table"][k][name]))
     for name in ("value", "error_estimate", "taylor_error", "negligible"):
         cols.append((f"3d_{name}", lambda g, name=name: g["interpolation"][name]))
+    from ..jobs.mark import group_questions
+
+    # every question of 3(b)-(d) under the answers file's name, as printed (pendulab mark)
+    for q in group_questions((262, 407, 634)):
+        cols.append((f"key_{q.column}", lambda g, c=q.column: _group_key(g, c)))
     return cols
 
 
@@ -177,6 +211,10 @@ def _class_csv(key: AnswerKey) -> str:
     w.writerow(["problem", "answer", "value"])
     for problem, answer, value in class_rows(key):
         w.writerow([problem, answer, _cell(value)])
+    from ..jobs.mark import class_questions, key_text
+
+    for q in class_questions():  # every question as the answers file names it, as printed
+        w.writerow([f"question {q.part}", q.column, key_text(q)])
     for t in TOLERANCES:
         w.writerow(["tolerance", t.answer, f"{agreement(t)} ({why(t)})"])
     return buf.getvalue()
@@ -234,6 +272,22 @@ def class_blocks(key: AnswerKey) -> list[dict[str, Any]]:
         "Problem 5", ["$n$", "$S_n$ on (1)", "error", "rate", "substituted", "error"], rows,
         f"$hat(T) = {num(p5['t_hat'], 16)}$ s; one application of (11): {num(p5['single'], 15)}; "
         f"$S_10$: {num(p5['composite10'], 15)}."))
+    from ..jobs.mark import class_questions, group_questions, key_text
+
+    by_problem: dict[str, list[list[str]]] = {}
+    for q in class_questions():  # one block per problem: a block is never split across pages
+        by_problem.setdefault(q.part[0], []).append([q.column, q.part, key_text(q),
+                                                     sentence(f"mark.freedom.{q.freedom}")])
+    for problem, rows in by_problem.items():
+        blocks.append(_block(f"Problem {problem}: every question common to the class, as `pendulab mark` reads it",
+                             ["question", "part", "key", "accepted"], rows, plain=True))
+    picked = ("3b_t_max", "3d_fifth_t", "3d_divided_difference", "3d_error_estimate", "3d_rounding_level")
+    rows = []
+    for g in key.groups:
+        by = {q.column: key_text(q) for q in group_questions(g["students"])}
+        rows.append([str(g["line"]), " ".join(map(str, g["students"]))] + [by.get(c, "") for c in picked])
+    blocks.append(_block("Problem 3(b), 3(d) for each group, as `pendulab mark` reads them",
+                         ["line", "students", *picked], rows, plain=True))
     blocks.append(_block("Marking tolerances: the agreement a correct program reaches",
                          ["answer", "agreement with this key", "why"],
                          [[t.answer, agreement(t), why(t)] for t in TOLERANCES], plain=True))

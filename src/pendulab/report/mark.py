@@ -2,8 +2,9 @@
 locale, JSON, plain text or a PDF with the class summary and a histogram of marks.
 
 Every word is the catalogues' (``mark.*``); the numbers are the results' own: a key prints
-as its shortest round-trip decimal (``repr``) in every format, so the CSV, the JSON, the
-text and the PDF show the same digits.
+in the report's form for its quantity (:func:`pendulab.jobs.mark.key_text`, the digit
+policy of :mod:`pendulab.core.digits`) in every format, so the CSV, the JSON's ``key_text``,
+the text and the PDF show the report's digits.
 """
 from __future__ import annotations
 
@@ -46,6 +47,12 @@ def number(x: Any, dialect: Dialect = "excel") -> str:
     return str(x)
 
 
+def _key_cell(v: Verdict, dialect: Dialect = "excel") -> str:
+    """The key as the report prints it (its digit policy), a decimal comma for ``excel-pt``."""
+    text = v.key_text or number(v.key)
+    return text.replace(".", ",") if dialect == "excel-pt" and isinstance(v.key, float) else text
+
+
 def why(v: Verdict, lang: str = "en") -> str:
     """Why an answer is right or wrong, in words."""
     method = "" if v.method is None else sentence(f"mark.method.{v.method}", lang, detail=v.detail)
@@ -75,7 +82,7 @@ def sheet(marks: ClassMarks, lang: str = "en", dialect: Dialect = "excel") -> li
         g = gm.to_dict()
         head = [str(gm.line), " ".join(map(str, gm.students)), "; ".join(gm.names or ()), flags(g, lang)]
         for v in gm.verdicts:
-            rows.append(head + [v.part, v.column, v.answer, number(v.key, dialect),
+            rows.append(head + [v.part, v.column, v.answer, _key_cell(v, dialect),
                                 sentence("mark.right" if v.right else "mark.wrong", lang), why(v, lang),
                                 number(v.points, dialect), number(v.max_points, dialect)])
     return rows
@@ -113,7 +120,7 @@ def text(marks: ClassMarks, lang: str = "en") -> str:
             out.append(f"  ! {flags(g, lang)}")
         for v in gm.verdicts:
             if not v.right:
-                out.append(f"  {v.column:<22} {v.answer or '-':<22} key {number(v.key):<24} {why(v, lang)}")
+                out.append(f"  {v.column:<22} {v.answer or '-':<22} key {_key_cell(v):<18} {why(v, lang)}")
     out.append(summary_text(marks, lang))
     out += histogram_lines(marks)
     return "\n".join(out) + "\n"
@@ -137,7 +144,7 @@ def _pdf(marks: ClassMarks, lang: str) -> bytes:
         groups.append({
             "title": f"line {gm.line}: {', '.join(map(str, gm.students))}", "names": "; ".join(gm.names or ()),
             "points": f"{gm.points:g} / {gm.max_points:g}", "flags": flags(g, lang),
-            "rows": [[v.part, v.column, v.answer, number(v.key), sentence("mark.right" if v.right else "mark.wrong",
+            "rows": [[v.part, v.column, v.answer, _key_cell(v), sentence("mark.right" if v.right else "mark.wrong",
                                                                           lang), why(v, lang), f"{v.points:g}"]
                      for v in gm.verdicts],
         })
