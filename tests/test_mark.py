@@ -383,3 +383,18 @@ def test_marked_sheet_pdf_and_text(tmp_path):
     plain = (tmp_path / "m.txt").read_text(encoding="utf-8")
     assert plain.startswith("line 1: 262 407 634 (Ana Sá; João Simões; Maria Luís)  0/")
     assert "90-100 %" in plain
+
+
+def test_a_formula_in_an_answer_is_never_run():
+    """An answer typed as =1+1 (or a name starting with @) reaches the sheet as text."""
+    from pendulab.report import mark as sheet
+
+    entries = parse_entries("262 407 634 | @Ana; Rui; Eva\n")
+    rows = mark.parse_answers("students,1b_g,2_q0\n262 407 634,=HYPERLINK(1),-0.3\n")
+    text = sheet.render(mark.mark_class(entries, rows), "csv").decode()
+    cells = [r for r in csv.reader(io.StringIO(text))]
+    assert "'=HYPERLINK(1)" in [c for r in cells for c in r] and "'@Ana; Rui; Eva" in cells[1]
+    assert "-0.3" in [c for r in cells for c in r]
+    pt = sheet.render(mark.mark_class(entries, rows), "csv", dialect="excel-pt").decode("utf-8-sig")
+    pt_cells = [c for r in csv.reader(io.StringIO(pt), delimiter=";") for c in r]
+    assert "-0.3" in pt_cells and "'=HYPERLINK(1)" in pt_cells  # an answer as typed, never run

@@ -19,7 +19,7 @@ from typing import Any, Literal
 from ..core.atomic import check_writable, write_bytes
 from ..core.errors import InputError
 from ..jobs.mark import ClassMarks, Verdict
-from .key import repeated_words
+from .key import plain_cell, repeated_words
 from .typeset import needs_system_fonts, typeset
 from .words import sentence
 
@@ -88,10 +88,16 @@ def sheet(marks: ClassMarks, lang: str = "en", dialect: Dialect = "excel") -> li
     return rows
 
 
+def _safe(cell: str) -> str:
+    """A cell a spreadsheet never runs as a formula (:func:`pendulab.report.key.plain_cell`);
+    a number with a decimal comma (``-0,5``) is a number too."""
+    return cell if plain_cell(cell.replace(",", ".")) == cell.replace(",", ".") else plain_cell(cell)
+
+
 def _csv(marks: ClassMarks, lang: str, dialect: Dialect) -> bytes:
     buf = io.StringIO()
     w = csv.writer(buf, delimiter=";" if dialect == "excel-pt" else ",", lineterminator="\r\n")
-    w.writerows(sheet(marks, lang, dialect))
+    w.writerows([[_safe(c) for c in row] for row in sheet(marks, lang, dialect)])
     return (("\ufeff" if dialect == "excel-pt" else "") + buf.getvalue()).encode("utf-8")
 
 
@@ -188,7 +194,8 @@ def write_marks(marks: ClassMarks, output: str | os.PathLike, lang: str = "en", 
 def template_csv(rows: list[list[str]], dialect: Dialect = "excel") -> bytes:
     """``pendulab key --template``: the answers file to fill in, in the dialect's separator."""
     buf = io.StringIO()
-    csv.writer(buf, delimiter=";" if dialect == "excel-pt" else ",", lineterminator="\r\n").writerows(rows)
+    csv.writer(buf, delimiter=";" if dialect == "excel-pt" else ",", lineterminator="\r\n").writerows(
+        [[_safe(c) for c in row] for row in rows])
     return (("\ufeff" if dialect == "excel-pt" else "") + buf.getvalue()).encode("utf-8")
 
 
