@@ -102,6 +102,9 @@ def group_answers(students, variant: int) -> tuple[dict[str, str], set[str]]:
             small = max(abs(r["e0"]), r["rounding"]) < P3.NEGLIGIBLE * abs(r["p0"] - exact)
             negligible.add("yes" if small else "no")
             if (s, fifth - jj) == ((-1, -2), (-2, 2), (0, 4), (-1, 3), (0, -1), (-2, -3))[variant % 6]:
+                for k in range(4):  # the table (z2_j, t_j) and p's Newton coefficients
+                    out[f"3d_t{k}"], out[f"3d_z2_{k}"] = f"{tt[jj + s + k]:.3f}", repr(z2[jj + s + k])
+                    out[f"3d_c{k}"] = f"{r['coef'][k]:.8e}"
                 out["3d_p0"], out["3d_fifth_t"] = repr(r["p0"]), f"{tt[fifth]:.3f}"
                 out["3d_divided_difference"], out["3d_error_estimate"] = f"{r['dd4']:.4e}", f"{r['e0']:.3e}"
                 out["3d_rounding_level"], out["3d_negligible"] = f"{r['rounding']:.1e}", "yes" if small else "no"
@@ -392,7 +395,7 @@ def test_a_formula_in_an_answer_is_never_run():
     entries = parse_entries("262 407 634 | @Ana; Rui; Eva\n")
     rows = mark.parse_answers("students,1b_g,2_q0\n262 407 634,=HYPERLINK(1),-0.3\n")
     text = sheet.render(mark.mark_class(entries, rows), "csv").decode()
-    cells = [r for r in csv.reader(io.StringIO(text))]
+    cells = list(csv.reader(io.StringIO(text)))
     assert "'=HYPERLINK(1)" in [c for r in cells for c in r] and "'@Ana; Rui; Eva" in cells[1]
     assert "-0.3" in [c for r in cells for c in r]
     pt = sheet.render(mark.mark_class(entries, rows), "csv", dialect="excel-pt").decode("utf-8-sig")

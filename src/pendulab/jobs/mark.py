@@ -118,7 +118,8 @@ def _choice(column: str, part: str, scope: Literal["class", "group"], key: Any, 
 PRINTED = (("1b_g", "p1.g"), ("2_alpha_deg", "p2.iterate"), ("2_x0_deg", "p2.iterate"), ("2_q", "p2.quotient"),
            ("2_constant", "p2.quotient"), ("2_error_estimate", "p2.error_estimate"), ("3a_", "p3.state"),
            ("3b_t_hat", "t_hat"), ("3c_T", "estimate"), ("3c_error", "error"), ("3d_p0", "estimate"),
-           ("3d_divided", "p3.error_estimate"), ("3d_error_estimate", "p3.error_estimate"), ("4a_z1", "p3.state"),
+           ("3d_divided", "p3.error_estimate"), ("3d_c", "p3.coefficient"), ("3d_z2", "p3.state"),
+           ("3d_error_estimate", "p3.error_estimate"), ("4a_z1", "p3.state"),
            ("4c_", "p4.normal"), ("4d_ssd", "p4.deviation"), ("4d_max", "p4.deviation"), ("4d_", "p4.coefficient"),
            ("5d_error", "error"), ("5", "p5.estimate"))
 
@@ -429,11 +430,23 @@ def _group_questions(students: tuple[int, ...]) -> tuple[Question, ...]:
                            slack=_ulps(exact, 64), signless=True, min_digits=2))
         if h == 1e-3:
             p0s, fifths, dds, e0s, levels, negl = [], [], [], [], [], []
+            tables: dict[str, list[Alternative]] = {}
+            coef_slack: dict[int, float] = {}
             key: dict[str, Any] = {}
             for table, fifth_label, first, fifth, r in _cubic_tables(p3, tt, z2, jj):
                 detail = f"{table}, {fifth_label}"
-                if first:  # p(0) is the table's, whatever the fifth node
+                if first:  # p(0), the table and p's coefficients are the table's, whatever the fifth node
                     p0s.append(Alternative("table", table, r["p0"]))
+                    start = jj + {"j-2": -2, "j-1": -1, "j": 0}[table.split("..")[0]]
+                    nodes = [start + k for k in range(4)]
+                    for k, node in enumerate(nodes):
+                        tables.setdefault(f"3d_t{k}", []).append(Alternative("table", table, tt[node]))
+                        tables.setdefault(f"3d_z2_{k}", []).append(Alternative("table", table, z2[node]))
+                        tables.setdefault(f"3d_c{k}", []).append(Alternative("table", table, r["coef"][k]))
+                        # c_k = t[x_0..x_k]: each t_i's half ulp over the products of its differences
+                        bound = 4 * math.fsum(math.ulp(tt[nodes[i]]) / 2 / abs(math.prod(
+                            z2[nodes[i]] - z2[nodes[m]] for m in range(k + 1) if m != i)) for i in range(k + 1))
+                        coef_slack[k] = max(coef_slack.get(k, 0.0), bound)
                 fifths.append(Alternative("table_fifth", detail, tt[fifth]))
                 dds.append(Alternative("table_fifth", detail, r["dd4"]))
                 e0s.append(Alternative("table_fifth", detail, r["e0"]))
@@ -445,6 +458,11 @@ def _group_questions(students: tuple[int, ...]) -> tuple[Question, ...]:
                            "rounding": r["rounding"], "negligible": "yes" if small else "no"}
             level = max(float(x.value) for x in levels)
             cubic_part += [
+                *[_choice(col, "3(d)", "group", next(float(a.value) for a in alts if a.detail == "j-1..j+2"), alts,
+                          "tables", slack=(coef_slack[int(col[-1])] if col.startswith("3d_c")
+                                           else _ulps(float(alts[0].value), 4)),
+                          min_digits=3 if col.startswith("3d_c") else 10)
+                  for col, alts in sorted(tables.items(), key=lambda ca: (ca[0][:4], ca[0][-1]))],
                 _choice("3d_p0", "3(d)", "group", key["p0"], p0s, "tables", slack=_ulps(exact, 64), min_digits=10),
                 _choice("3d_fifth_t", "3(d)", "group", key["fifth"], fifths, "fifth_node", slack=_ulps(exact, 4)),
                 _choice("3d_divided_difference", "3(d)", "group", key["dd"], dds, "fifth_node",

@@ -60,7 +60,7 @@ def why(v: Verdict, lang: str = "en") -> str:
     if v.code == "outside" and v.method is None:
         return sentence("mark.code.outside_text", lang)
     return sentence(f"mark.code.{v.code}", lang, method=method, freedom=freedom, digits=v.digits,
-                    low=number(v.low), high=number(v.high))
+                    low="" if v.low is None else f"{v.low:.6g}", high="" if v.high is None else f"{v.high:.6g}")
 
 
 def flags(g: dict[str, Any], lang: str = "en") -> str:
