@@ -14,6 +14,7 @@ import pendulab  # noqa: E402
 
 project = "pendulab"
 author = "pendulab contributors"
+copyright = f"{author}, MIT licence"  # the footer: without it alabaster prints "(c). |"
 release = version = pendulab.__version__
 
 extensions = [

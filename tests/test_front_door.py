@@ -32,10 +32,10 @@ def _commands():
 def test_readme_is_a_front_page():
     lines = README.read_text().splitlines()
     assert len(lines) <= 250
-    assert lines[2:5] == [  # the first screen starts with the two commands
+    assert lines[2:5] == [  # the first screen starts with the report's and the notebook's commands
         "```sh",
-        "make report   # sets up .venv/ and writes report.pdf for the built-in example group (262, 407, 634)",
-        "make test     # sets up .venv/ and runs the test suite",
+        "make report     # sets up .venv/ and writes report.pdf for the built-in example group (262, 407, 634)",
+        "make notebook   # sets up .venv/ with JupyterLab and opens the tutorial (make tutorial: runs it headless)",
     ]
     text = "\n".join(lines)
     assert ".venv/bin/pendulab" in text and "source .venv/bin/activate" in text
