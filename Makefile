@@ -78,6 +78,7 @@ tutorial: $(VENV)/.installed-notebook
 
 bench: $(VENV)/.installed-test
 	$(BIN)/python benchmarks/run.py
+	$(BIN)/python benchmarks/workloads.py
 
 clean:
 	rm -rf $(VENV) build src/*.egg-info docs/_build

@@ -159,3 +159,105 @@ def test_the_kernel_refuses_amplitudes_outside_0_pi(bad):
         return
     with pytest.raises(ValueError, match=r"amplitude\[40\]"):
         agm_period(1.0, alpha)
+
+
+# The scalar route: agm_period of plain floats runs the one-pendulum kernel (agm_period_dd).
+SCALAR_ALPHA = np.concatenate([RANDOM_ALPHA[:300], HARD])
+
+
+@pytest.mark.slow
+def test_scalar_kernel_value_is_within_the_error_bound():
+    # The unrounded th + tl of the one-pendulum kernel against the reference at 60 digits,
+    # on random amplitudes, those within 1e-15 of pi, below 1e-150, and extreme l/g.
+    from numba import njit
+
+    from pendulab.engine.agm import period_dd
+
+    f = njit(lambda a, length, g: period_dd(a, length, g))
+    cases = [(a, 2.5, G) for a in SCALAR_ALPHA] + [(a, 1e-150, 1e150) for a in HARD[::7]] \
+        + [(a, 1e150, 1e-150) for a in HARD[::7]]
+    with mpmath.workdps(60):
+        worst = max(abs((mpmath.mpf(h) + mpmath.mpf(low)) / reference_period(length, a, g, dps=60) - 1)
+                    for a, length, g in cases for h, low in [f(a, length, g)])
+    assert worst < ERROR_BOUND / 2**10
+
+
+def test_scalar_periods_are_correctly_rounded_and_equal_the_array_path():
+    floats = [float(a) for a in SCALAR_ALPHA]
+    got = [agm_period(2.5, a) for a in floats]
+    assert got == [nearest(2.5, a) for a in floats]
+    assert np.array_equal(got, agm_period(2.5, SCALAR_ALPHA))
+    # Every length of the random set, as Python floats and as numpy scalars (the checked route).
+    lengths = [float(x) for x in RANDOM_LENGTH]
+    got = [agm_period(length, float(a)) for length, a in zip(lengths, RANDOM_ALPHA)]
+    assert np.array_equal(got, agm_period(RANDOM_LENGTH, RANDOM_ALPHA))
+    assert got[:100] == [agm_period(length, a) for length, a in zip(RANDOM_LENGTH[:100], RANDOM_ALPHA[:100])]
+
+
+def test_scalar_failed_rounding_tests_are_recomputed(monkeypatch):
+    # Where the kernel's rounding test fails (it returns -1) mpmath gives the period.
+    from pendulab.numerics import period
+
+    agm_period(1.0, 0.5)  # the kernel loaded
+    monkeypatch.setattr(period, "_scalar_period_kernel", lambda a, length, g: -1.0)
+    for a in (0.0, 1e-8, 1.0, 3.0, below_pi[1]):
+        assert agm_period(3.5, a) == nearest(3.5, a)
+    # The amplitudes where the array kernel's test failed, by the scalar route.
+    monkeypatch.undo()
+    alpha = np.random.default_rng(0).uniform(0, math.pi, 1_000_000)
+    out, index = np.empty(alpha.size), np.empty(alpha.size, np.int64)
+    count, _ = agm_periods_dd(alpha, np.array([1.0]), G, out, out[:0], index)
+    assert [agm_period(1.0, float(a)) for a in alpha[index[:count]]] == [nearest(1.0, a) for a in alpha[index[:count]]]
+
+
+@pytest.mark.slow
+@settings(max_examples=200, deadline=None)
+@given(st.floats(0, math.pi, exclude_max=True),
+       st.floats(1e-300, 1e300) | st.sampled_from([1e-150, 1e150, math.nextafter(1e-150, 0), math.nextafter(1e150, 2e150)]),
+       st.sampled_from([G, 1e-150, 1e150, 1.0, math.nextafter(1e150, 2e150)]))
+def test_any_scalar_pendulum_is_correctly_rounded(alpha, length, g):
+    # Over the whole range of each input, both sides of the unchecked route's edges.
+    from pendulab.core.errors import InputError
+
+    try:
+        got = agm_period(length, alpha, g)
+    except InputError as exc:  # only a period beyond MAX_PERIOD is refused
+        assert "period" in str(exc)
+        with mpmath.workdps(30):
+            assert reference_period(length, 0.0, g, dps=30) > 1e299
+        return
+    assert got == nearest(length, alpha, g)
+    assert got == agm_period(np.array([length]), np.array([alpha]), g)[0]
+
+
+@pytest.mark.parametrize("bad", [math.pi, -1e-300, math.nan, math.inf, 7.0, -0.5])
+def test_scalar_bad_amplitudes_are_refused(bad):
+    with pytest.raises(ValueError, match="amplitude"):
+        agm_period(1.0, bad)
+
+
+@pytest.mark.parametrize(("length", "g", "name"), [(0.0, G, "length"), (-1.0, G, "length"), (math.inf, G, "length"),
+                                                   (5e-324, G, "length"), (1.0, 0.0, "g"), (1.0, math.nan, "g"),
+                                                   (1e300, 1e-300, "length")])
+def test_scalar_bad_lengths_and_g_are_refused(length, g, name):
+    with pytest.raises(ValueError, match=name):
+        agm_period(length, 1.0, g)
+
+
+@settings(max_examples=200, deadline=None)
+@given(st.floats(0, math.pi, exclude_max=True), st.floats(1e-300, 1e300), st.integers(0, 12))
+def test_scalar_t_hat_is_the_checked_routes_double(alpha, length, n):
+    # T^ of plain floats (unchecked route) against numpy scalars (the checked route) and
+    # the loop (7)-(8) written out: the same double.
+    from pendulab.core.errors import InputError
+
+    try:
+        slow = agm_period(np.float64(length), np.float64(alpha), iterations=n)
+    except InputError:
+        return
+    assert agm_period(length, alpha, iterations=n) == slow
+    if 1e-150 <= length <= 1e150:
+        a, b = 1.0, math.cos(0.5 * alpha)
+        for _ in range(n):
+            a, b = 0.5 * (a + b), math.sqrt(a * b)
+        assert slow == 2 * math.pi * math.sqrt(length / G) / (0.5 * (a + b))

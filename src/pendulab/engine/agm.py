@@ -1,4 +1,4 @@
-"""Correctly rounded periods (8) for arrays: the AGM (7) in double-double arithmetic, compiled.
+"""Correctly rounded periods (8): the AGM (7) in double-double arithmetic, compiled, for arrays and for one pendulum.
 
 For each amplitude the kernel computes ``T = 2 pi sqrt(l)/sqrt(g) / M(1, cos(alpha/2))``
 as an unevaluated sum ``th + tl`` of two doubles (double-double: Dekker, Numer. Math. 18
@@ -275,6 +275,46 @@ def block_iterations(b0):
     ``b0`` falls (the AGM preserves order), so the block's smallest ``b0`` sets it.
     """
     return agm(b0, mean.MAX_ITERATIONS, 2.0**-14)[1]
+
+
+@_inline
+def period_dd(alpha, length, g):
+    """The period ``th + tl`` of one pendulum as a double-double, within :data:`ERROR_BOUND`:
+    the steps of :func:`agm_periods_dd` for one element, with the double's own square root
+    (correctly rounded, its residual by FMA) where the array kernel refines a
+    single-precision estimate."""
+    gh, gl = dd_sqrt(g, 0.0)
+    th, tl = t0_dd(length, gh, gl)
+    b, eb = half_angle_cos(alpha)
+    a, ea = 1.0, 0.0
+    for _ in range(block_iterations(b)):
+        s, es = two_sum(a, b)
+        p = a * b
+        ep = fma(a, b, -p) + (a * eb + b * ea)
+        r = math.sqrt(p)
+        a, ea = 0.5 * s, 0.5 * (es + (ea + eb))
+        b, eb = r, (fma(-r, r, p) + ep) / (2.0 * r)
+    # M and T = T0 / M as in agm_periods_dd's last loop.
+    s, es = two_sum(a, b)
+    inv_s = 1.0 / s
+    t = ((a - b) + (ea - eb)) * inv_s
+    x = t * t
+    mh, ml = two_sum(0.5 * s, -0.5 * s * (x * (0.25 + x * (5.0 / 64.0))))
+    ml += 0.5 * (es + (ea + eb))
+    inv = (2.0 * inv_s) * (1.0 + 0.25 * x)
+    q = th * inv
+    return fast_two_sum(q, (fma(-q, mh, th) + (tl - q * ml)) * inv)
+
+
+@_jit
+def agm_period_dd(alpha, length, g):
+    """The period of one pendulum (:func:`period_dd`) rounded, or -1.0 where the rounding
+    test fails (the caller computes it again). The caller checks ``0 <= alpha < pi`` and
+    that ``length``, ``g`` are normal. Called from the interpreter in well under a microsecond."""
+    ph, pl = period_dd(alpha, length, g)
+    err = ERROR_BOUND * ph
+    ok = (ph + (pl + err) == ph) & (ph + (pl - err) == ph) & (ph > 1e-290) & (ph < 1e290)
+    return ph if ok else -1.0
 
 
 @_jit

@@ -69,6 +69,28 @@ COMPILED_MIN = 10_000
 FIXED_ITERATIONS_ULPS = 20
 
 
+#: Lengths and g in this range give ``2 pi sqrt(l/g)`` far inside the doubles, as the
+#: checks (``validate.positive``, ``period_scale``) require; outside it they run first.
+_SAFE_LO, _SAFE_HI = 1e-150, 1e150
+_TWO_PI = 2 * _math.pi
+
+
+def _scalar_period() -> Any:
+    """:func:`pendulab.engine.agm.agm_period_dd`, imported on the first scalar period
+    (numba loads then, not at ``import pendulab``)."""
+    global _scalar_period_kernel
+    if _scalar_period_kernel is None:
+        from ..engine.agm import agm_period_dd
+
+        with deferred():  # a signal while it compiles waits for its return (_interrupt)
+            agm_period_dd(0.5, 1.0, 1.0)
+        _scalar_period_kernel = agm_period_dd
+    return _scalar_period_kernel
+
+
+_scalar_period_kernel: Any = None
+
+
 def _is_scalar(x: Any) -> TypeGuard[SupportsFloat]:
     if isinstance(x, _numbers.Real):
         return True
@@ -233,9 +255,22 @@ def agm_period(length: float | Exact | ArrayLike, amplitude: float | Exact | Arr
     digits are lost there (unlike ``scipy.special.ellipk(sin(alpha/2)**2)``, whose
     argument ``m`` rounds to 1). ``sqrt(l)/sqrt(g)`` keeps periods such as
     ``agm_period(1e-300, 1, g=1e300)`` representable. Arrays run the compiled
-    double-double kernel :func:`pendulab.engine.agm.agm_periods_dd` (one core); a scalar is
-    computed by :func:`nearest_period` (mpmath), which gives the same double.
+    double-double kernel :func:`pendulab.engine.agm.agm_periods_dd` (one core), one
+    pendulum its one-element form :func:`pendulab.engine.agm.agm_period_dd` (under a
+    microsecond; floats inside the ranges where every check passes skip the checks); where
+    the kernels' rounding test fails (a few amplitudes in 10^6), :func:`nearest_period`
+    (mpmath) gives the double. The first scalar call in a process loads numba.
     """
+    # One pendulum given as floats inside the ranges where every check below passes:
+    # the kernel without them (a notebook's loop of calls). Anything else takes the checks.
+    if (type(length) is float and type(amplitude) is float and type(g) is float
+            and 0.0 <= amplitude < _math.pi and _SAFE_LO <= length <= _SAFE_HI and _SAFE_LO <= g <= _SAFE_HI):
+        if iterations is None:
+            t = _scalar_period()(amplitude, length, g)
+            if t > 0.0:
+                return t
+        elif type(iterations) is int and 0 <= iterations <= 1000:
+            return _TWO_PI * _math.sqrt(length / g) / agm(_math.cos(0.5 * amplitude), iterations, FIXED)[0]
     if iterations is not None:
         iterations = _v.integer("iterations", iterations, 0, 1000)
     exact_array = iterations is None and not (_is_scalar(amplitude) and _is_scalar(length))
@@ -246,7 +281,12 @@ def agm_period(length: float | Exact | ArrayLike, amplitude: float | Exact | Arr
         return small_angle_period(length, g) / agm(_math.cos(0.5 * alpha), iterations, FIXED)[0]
     if scalar:
         small_angle_period(length, g)  # refuses a length or g whose period overflows
-        return nearest_period(_v.positive("length", length), alpha, float(g))
+        lf, gf = _v.positive("length", length), float(g)
+        if _SAFE_LO <= lf <= _SAFE_HI and _SAFE_LO <= gf <= _SAFE_HI:
+            t = _scalar_period()(alpha, lf, gf)
+            if t > 0.0:
+                return t
+        return nearest_period(lf, alpha, gf)  # the rounding test failed: a few in 10^6
     import numpy as np
 
     t0 = small_angle_period(length, g)  # checks the lengths and g
