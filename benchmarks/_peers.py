@@ -9,6 +9,7 @@ from __future__ import annotations
 
 import ctypes
 import importlib.util
+import os
 import resource
 import subprocess
 import sys
@@ -116,6 +117,16 @@ def ratio(row: dict) -> float | None:
     if row.get("peer") in (None, 0):
         return None
     return row["ours"] / row["peer"]
+
+
+def write_between(path: Path, begin: str, end: str, text: str) -> None:
+    """``text`` between the markers ``begin`` and ``end`` of the file ``path`` (atomically: a
+    temporary file beside it, then a rename); the rest of the file as it was."""
+    doc = path.read_text()
+    start, stop = doc.index(begin) + len(begin), doc.index(end)
+    tmp = path.with_name(path.name + ".tmp")
+    tmp.write_text(doc[:start] + "\n" + text + "\n" + doc[stop:])
+    os.replace(tmp, path)
 
 
 def print_table(rows: list[dict]) -> None:

@@ -1,4 +1,4 @@
-"""The trajectory driver against the loops it replaces, and the certified fast step against the literal one.
+"""The trajectory driver against the loops it replaces.
 
 Side by side in one run (best of ``REPEAT`` rounds, taking turns, of the thread's CPU time:
 the kernels run on one thread, and other work on a shared machine takes the core away from
@@ -7,15 +7,8 @@ either at random), on the example group's pendulum (l = 2.0800838231 m, alpha = 
 - :func:`pendulab.engine.kernels.drive` (every step; one in 1000 kept; the explorer's CSV blocks
   from a carried state) against separate loops compiled here as they would be written
   without it: a plain loop, a thinning loop, the web's ``advance`` with its ``i % stride``
-  per step. These loops step through ``four_branches``, :func:`pendulab.engine.kernels.step`
-  without its :data:`~pendulab.engine.kernels.TAYLOR2_FAST` branch, so the rows also show what
-  that branch costs the other codes (rk4 and verlet too);
-- the literal step of (3) (the C library's sin and cos, code ``TAYLOR2``) against the
-  certified table step (``TAYLOR2_FAST``, the code :func:`pendulab.engine.kernels.kernel_code`
-  chooses for fine steps) at h = 1e-6: (i) a trajectory of 10^6 steps through ``drive``,
-  (ii) the whole period search (``first_return``, 4.79 * 10^6 steps); and the trajectory
-  at h = 1e-4 (where about 5 steps in 100 fall back) and
-  h = 1e-3, where ``kernel_code`` keeps the literal step.
+  per step. These loops step through ``four_branches``, the branches of
+  :func:`pendulab.engine.kernels.step` written out here.
 
 Every pair is checked to give the same bits before it is timed. Ratios are ours/baseline
 times: below 1 is faster. Run: ``.venv/bin/python benchmarks/bench_driver.py [--quick]``.
@@ -34,11 +27,8 @@ from numba import njit
 from pendulab.engine.kernels import (
     RK4,
     TAYLOR2,
-    TAYLOR2_FAST,
     VERLET,
     drive,
-    first_return,
-    kernel_code,
     rk4_step,
     taylor2_step,
     taylor_step,
@@ -53,7 +43,7 @@ REPEAT = 3 if "--quick" in sys.argv else 15
 # ------------------------------------------------------------------ the loops the driver replaces
 @njit(cache=True, nogil=True, inline="always")
 def four_branches(method, order, z1, z2, h, c):
-    """``pendulab.engine.kernels.step`` with the integrators' branches only (no fast step)."""
+    """``pendulab.engine.kernels.step``'s branches, written out."""
     if method == TAYLOR2:
         return taylor2_step(z1, z2, h, c)
     if method == RK4:
@@ -115,34 +105,6 @@ def every_step_row(code: int, order: int, name: str, h: float, n: int) -> dict:
             "peer_name": "plain loop, four branches", "peer": t["loop"] * 1e6 / n, "target": "<= 1.0x"}
 
 
-def fast_trajectory_row(h: float, n: int) -> dict:
-    """(i) a trajectory of ``n`` steps of (3), literal code against fast code."""
-    z1, z2, r1, r2 = (np.empty(n) for _ in range(4))
-    _drive_all(TAYLOR2, 2, h, z1, z2)
-    _drive_all(TAYLOR2_FAST, 2, h, r1, r2)
-    assert np.array_equal(z1, r1) and np.array_equal(z2, r2)
-    t = side_by_side({"literal": lambda: _drive_all(TAYLOR2, 2, h, z1, z2),
-                      "fast": lambda: _drive_all(TAYLOR2_FAST, 2, h, r1, r2)}, REPEAT, time.thread_time)
-    chosen = "fast" if kernel_code(TAYLOR2, C, h) == TAYLOR2_FAST else "literal"
-    return {"what": f"(3) trajectory, 10^6 steps, h = {h:g}, literal step (s)", "ours": t["literal"],
-            "peer_name": "certified table step", "peer": t["fast"], "target": f"{chosen} chosen"}
-
-
-def fast_rows(n: int) -> list[dict]:
-    """(i) a trajectory of ``n`` steps and (ii) the period search, literal code against fast code."""
-    out = [fast_trajectory_row(h, n) for h in (1e-3, 1e-4, 1e-6)]
-    h = 1e-6
-    m = 10_000_000
-    lit, fast = first_return(TAYLOR2, 2, ALPHA, C, h, m), first_return(TAYLOR2_FAST, 2, ALPHA, C, h, m)
-    assert lit[:2] == fast[:2] and np.array_equal(lit[2], fast[2]) and np.array_equal(lit[3], fast[3])
-    t = side_by_side({"literal": lambda: first_return(TAYLOR2, 2, ALPHA, C, h, m),
-                      "fast": lambda: first_return(TAYLOR2_FAST, 2, ALPHA, C, h, m)}, REPEAT, time.thread_time)
-    out.append({"what": f"(3) period search, {lit[1] / 1e6:.2f} * 10^6 steps, h = {h:g}, literal step (s)",
-                "ours": t["literal"], "peer_name": "certified table step", "peer": t["fast"],
-                "target": "fast chosen"})
-    return out
-
-
 def rows() -> list[dict]:
     n, stride = 1_000_000, 1000
     out = [every_step_row(TAYLOR2, 2, "taylor2", 1e-3, n), every_step_row(RK4, 4, "rk4", 1e-3, n // 2),
@@ -181,7 +143,7 @@ def rows() -> list[dict]:
     t = side_by_side({"driver": by_driver, "loop": by_modulo}, REPEAT, time.thread_time)
     out.append({"what": f"CSV blocks from a carried state, 1 in {stride} kept (s per 10^6 steps)",
                 "ours": t["driver"], "peer_name": "advance (i % stride)", "peer": t["loop"], "target": "<= 1.0x"})
-    return out + fast_rows(n)
+    return out
 
 
 if __name__ == "__main__":

@@ -19,10 +19,8 @@ First, the streamed pass alone (``--pass``: only this): :func:`pendulab.engine.f
 (the library's driver into a buffer, folded by a compiled reduction) against the fused loop
 it replaces (``fused_scan`` below: the step and the reduction in one loop), on the example
 group's pendulum (l = 2.0800838231 m, alpha = 4 pi/5, t_max = 20 s, 1000 columns and the
-page's samples) at h = 1e-4 and 1e-5, both with the kernel code the library chooses there
-(``kernel_code``: the certified table step); and the pass with that code against the pass
-with the literal step (forced). Taking turns, best CPU time of ``PASS_REPEAT`` (100 at
-1e-4); all are first checked to keep the same bits.
+page's samples) at h = 1e-4 and 1e-5, taking turns, best CPU time of ``PASS_REPEAT``
+(100 at 1e-4); both are first checked to keep the same bits.
 """
 from __future__ import annotations
 
@@ -32,7 +30,6 @@ import statistics
 import sys
 import time
 from pathlib import Path
-from unittest import mock
 
 import httpx
 import numpy as np
@@ -42,7 +39,7 @@ from numba import njit
 from pendulab.core.interrupt import CHUNK_COST, pieces, run_pieces
 from pendulab.core.methods import cost_per_step
 from pendulab.engine import fold
-from pendulab.engine.kernels import TAYLOR2_FAST, kernel_code, step
+from pendulab.engine.kernels import step
 from pendulab.numerics.crossing import estimate_period
 from pendulab.numerics.period import agm_period
 from pendulab.numerics.simulation import method_code, simulate, step_count
@@ -151,30 +148,18 @@ def pass_rows() -> list[dict]:
         per = float(agm_period(EXAMPLE_LENGTH, alpha)) / h
         samples = np.union1d(np.union1d(sampling.phase_samples(n, per)[0], sampling.frame_samples(n, per)),
                              sampling.frame_samples(n, per, 64, sampling.ERROR_POINTS))
-        chosen = kernel_code(code, c, h)
-        assert chosen == TAYLOR2_FAST
         new = functools.partial(fold.run, code, order, alpha, 0.0, c, h, n, nb, samples, size)
-        old = functools.partial(fused_pass, chosen, order, alpha, c, h, n, nb, samples, size)
-
-        def literal(h=h, n=n, samples=samples):
-            with mock.patch.object(fold, "kernel_code", lambda method, c, h: method):
-                return fold.run(code, order, alpha, 0.0, c, h, n, nb, samples, size)
-
+        old = functools.partial(fused_pass, code, order, alpha, c, h, n, nb, samples, size)
         r, (value, steps, s_th, s_om, flags) = new(), old()
-        q = literal()
-        assert all(np.array_equal(getattr(r, k).view(np.int64), getattr(q, k).view(np.int64))
-                   for k in ("value", "step", "s_theta", "s_omega", "where")), "the literal step keeps other values"
         same = (np.array_equal(r.value.view(np.int64), value.view(np.int64)) and np.array_equal(r.step, steps)
                 and np.array_equal(r.s_theta, s_th) and np.array_equal(r.s_omega, s_om)
                 and np.array_equal(r.where[fold.LEFT:], flags))
         assert same, "the two passes keep different values"
         # The thread's CPU time: the kernels run on one thread, and other work on a shared
         # machine takes the core away from either at random (wall times vary twofold).
-        t = side_by_side({"new": new, "old": old, "literal": literal}, int(PASS_REPEAT * 1e-5 / h), time.thread_time)
+        t = side_by_side({"new": new, "old": old}, int(PASS_REPEAT * 1e-5 / h), time.thread_time)
         out.append({"what": f"streamed pass, {n} steps of (3), h = {h:g} (CPU s)", "ours": t["new"],
                     "peer_name": "the fused scan", "peer": t["old"], "target": "<= 1.0x"})
-        out.append({"what": "  same pass, table step (chosen) against the literal step (CPU s)", "ours": t["new"],
-                    "peer_name": "literal step (forced)", "peer": t["literal"], "target": "<= 1.0x"})
     return out
 
 

@@ -12,12 +12,15 @@ Chromium or Playwright is found), and whether ``agm_period`` is correctly rounde
 pendulums against mpmath). The machine's load (``os.getloadavg``) is printed before and
 after: ratios are only meaningful when it is low.
 
-Run: ``make bench`` or ``.venv/bin/python benchmarks/run.py [--quick]`` (about 4 minutes;
-``--quick``: 10^4 pendulums for the rounding check, 3 repeats instead of 5, 2 of the report
-and its floor, 2 cold page loads and 3 typed amplitudes).
+Run: ``make bench`` or ``.venv/bin/python benchmarks/run.py [--quick] [--write]`` (about 4
+minutes; ``--quick``: 10^4 pendulums for the rounding check, 3 repeats instead of 5, 2 of
+the report and its floor, 2 cold page loads and 3 typed amplitudes). ``--write`` puts the
+table into ``docs/performance.md`` between ``<!-- kernels -->`` and ``<!-- /kernels -->``.
 """
 from __future__ import annotations
 
+import contextlib
+import io
 import os
 import platform
 import sys
@@ -37,8 +40,9 @@ def main() -> None:
     from bench_start import start_rows
     from bench_sweep import sweep_rows
 
+    load = os.getloadavg()[0]
     print(f"pendulab benchmarks: {platform.processor() or platform.machine()}, {os.cpu_count()} CPUs, "
-          f"load average {os.getloadavg()[0]:.2f} (1 min)")
+          f"load average {load:.2f} (1 min)")
     t = time.perf_counter()
     dll = build_c()
     rows = taylor_rows(dll, repeat) + sweep_rows(dll, repeat=repeat) + period_rows(repeat) + agm_rows(5 * repeat)
@@ -46,12 +50,22 @@ def main() -> None:
     left_out: list[str] = []
     rows += report(2 if quick else repeat, left_out) + page((2, 3) if quick else (5, 10), left_out)
     rows += ulps_rows(10_000 if quick else 100_000)
+    out = io.StringIO()
+    with contextlib.redirect_stdout(out):
+        print_table(rows)
+        for line in left_out:
+            print(line)
+        print(f"\nOne run of `benchmarks/run.py{' --quick' if quick else ''}`: {os.cpu_count()} CPUs, "
+              f"{time.perf_counter() - t:.0f} s, load average {load:.1f} at the start, "
+              f"{os.getloadavg()[0]:.1f} at the end. The ratio is pendulab's value over the peer's "
+              "(rates: higher is better; times: lower is better).")
     print()
-    print_table(rows)
-    for line in left_out:
-        print(line)
-    print(f"\nratio: pendulab's value over the peer's (rates: higher is better; times: lower is better); "
-          f"{time.perf_counter() - t:.0f} s; load average now {os.getloadavg()[0]:.2f}")
+    print(out.getvalue(), end="")
+    if "--write" in sys.argv:
+        from _peers import write_between
+
+        write_between(Path(__file__).resolve().parent.parent / "docs" / "performance.md",
+                      "<!-- kernels -->", "<!-- /kernels -->", out.getvalue().rstrip())
 
 
 def report(repeat: int, left_out: list[str]) -> list[dict]:

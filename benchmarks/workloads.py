@@ -243,13 +243,10 @@ def table(rows: list[dict]) -> str:
 
 
 def write(text: str, path: Path = DOC) -> None:
-    """``text`` between the markers of ``path`` (atomically: a temporary file, then a rename)."""
-    doc = path.read_text()
-    start, end = doc.index(BEGIN) + len(BEGIN), doc.index(END)
-    new = doc[:start] + "\n" + text + "\n" + doc[end:]
-    tmp = path.with_suffix(".md.tmp")
-    tmp.write_text(new)
-    os.replace(tmp, path)
+    """``text`` between the markers of ``path``."""
+    from _peers import write_between
+
+    write_between(path, BEGIN, END, text)
 
 
 WORKLOADS = (w1, w2, w3, w4, w5, w6)

@@ -37,11 +37,10 @@ def sigint_handler():
 
 
 def _one_call(method, order, alpha, c, h, n):
-    """The whole run in one call of the driver (the kernel code the library chooses): the
-    reference for the pieces."""
+    """The whole run in one call of the driver: the reference for the pieces."""
     z1, z2 = np.empty(n + 1), np.empty(n + 1)
     z1[0], z2[0] = alpha, 0.0
-    kernels.drive(kernels.kernel_code(method, c, h), order, alpha, 0.0, c, h, 0, n, 1, n, z1[1:], z2[1:])
+    kernels.drive(method, order, alpha, 0.0, c, h, 0, n, 1, n, z1[1:], z2[1:])
     return z1, z2
 
 
@@ -54,7 +53,7 @@ def test_pieces_give_the_same_bits_as_one_call(m, alpha, h, n, stride, piece):
     method, order = m
     c = -G / 2.0
     ref1, ref2 = _one_call(method, order, alpha, c, h, n)
-    one = kernels.first_return(kernels.kernel_code(method, c, h), order, alpha, c, h, n)
+    one = kernels.first_return(method, order, alpha, c, h, n)
     with pytest.MonkeyPatch.context() as mp:
         mp.setattr(kernels, "CHUNK_COST", piece * 50)  # pieces of piece * 50 / cost steps
         _cut(method, order, alpha, c, h, n, stride, ref1, ref2, one)
@@ -71,12 +70,11 @@ def _cut(method, order, alpha, c, h, n, stride, ref1, ref2, one):
     assert np.array_equal(cut[2], one[2]) and np.array_equal(cut[3], one[3])
 
 
-def test_fast_kernels_in_pieces_give_the_same_bits(monkeypatch):
-    """(3) long and fine runs through the table's sine (the fast kernel code), in pieces."""
+def test_long_fine_runs_in_pieces_give_the_same_bits(monkeypatch):
+    """(3) long and fine runs, in pieces."""
     alpha, c, h, n = 2.5, -G / EXAMPLE_LENGTH, 1e-5, 501_234
-    assert kernels.kernel_code(0, c, h) == kernels.TAYLOR2_FAST
     ref1, ref2 = _one_call(0, 2, alpha, c, h, n)
-    one = kernels.first_return(kernels.TAYLOR2_FAST, 2, alpha, c, h, n)
+    one = kernels.first_return(0, 2, alpha, c, h, n)
     assert one[0] == kernels.FOUND  # the period, about 4.8 s, within n h
     monkeypatch.setattr(kernels, "CHUNK_COST", 9973)
     z1, z2 = kernels.trajectory(0, 2, alpha, c, h, n)

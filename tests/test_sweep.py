@@ -206,7 +206,7 @@ def test_blocks_run_in_small_pieces_give_one_call_bit_for_bit(monkeypatch, threa
     one = first_returns_lanes(alphas, cs, 1e-2, n) if code == 0 else first_returns_serial(code, order, alphas, cs, 1e-2, n)
     if code != 0:  # the serial searches are the scalar kernel's one call per pendulum
         for i in range(m):
-            ref = kernels.first_return(kernels.kernel_code(code, cs[i], 1e-2), order, alphas[i], cs[i], 1e-2, n[i])
+            ref = kernels.first_return(code, order, alphas[i], cs[i], 1e-2, n[i])
             assert (one[0][i], one[1][i]) == ref[:2] and np.array_equal(one[2][i], ref[2]) and np.array_equal(one[3][i], ref[3])
     monkeypatch.setattr(sweep_kernel, "CHUNK_COST", 997)  # lock-step pieces of 997 // 16 steps
     monkeypatch.setattr(kernels, "CHUNK_COST", 997)  # the scalar searches' pieces

@@ -17,12 +17,11 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 
 from pendulab.core.interrupt import CHUNK_COST
-from pendulab.engine import fold, kernels
-from pendulab.engine.kernels import TAYLOR2_FAST, drive
+from pendulab.engine import fold
+from pendulab.engine.kernels import drive
 from pendulab.numerics import simulation
 from pendulab.numerics.simulation import method_code
 from pendulab.web import parameters, sampling
-from reference import EXAMPLE_LENGTH
 
 
 def reference(theta, omega, nb, samples, alpha, omega0, c):
@@ -137,46 +136,6 @@ def test_any_cut_keeps_the_same(n, nb, size, alpha, h):
     samples = samples_of(n, size)
     rec = fold.run(*method_code("taylor2"), alpha, 0.0, -1.0, h, n, nb, samples, size)
     assert_same(rec, reference(traj.theta, traj.omega, nb, samples, alpha, 0.0, -1.0))
-
-
-def _chosen(monkeypatch, owner, force_literal=False):
-    """Record the kernel code each call of ``owner.kernel_code`` gives (or force the literal one)."""
-    seen = []
-    real = kernels.kernel_code
-
-    def spy(method, c, h):
-        seen.append(method if force_literal else real(method, c, h))
-        return seen[-1]
-
-    monkeypatch.setattr(owner, "kernel_code", spy)
-    return seen
-
-
-def test_a_fine_pass_takes_the_fast_step_and_keeps_the_literal_values(monkeypatch):
-    """At h = 1e-6 the pass and the CSV run the certified table step (the code simulate
-    takes) and keep, bit for bit, what the literal step keeps."""
-    alpha, length, g, h, n = 4 * math.pi / 5, EXAMPLE_LENGTH, 9.80665, 1e-6, 300_000
-    c = -g / length
-    code, order = method_code("taylor2")
-    samples = samples_of(n, 7)
-    seen = _chosen(monkeypatch, fold)
-    fast = fold.run(code, order, alpha, 0.0, c, h, n, 300, samples, 70_001)
-    assert seen == [TAYLOR2_FAST]
-    seen = _chosen(monkeypatch, fold, force_literal=True)
-    literal = fold.run(code, order, alpha, 0.0, c, h, n, 300, samples, 70_001)
-    assert seen == [code]
-    for a, b in ((fast.value, literal.value), (fast.step, literal.step), (fast.s_theta, literal.s_theta),
-                 (fast.s_omega, literal.s_omega), (fast.where, literal.where)):
-        assert np.array_equal(a.view(np.int64), b.view(np.int64))
-    from pendulab.web import views
-
-    p = parameters.simulation({"length": str(length), "amplitude": "4pi/5", "step": "1e-6", "t_max": "0.3"})
-    text = {}
-    for force in (False, True):
-        seen = _chosen(monkeypatch, kernels, force_literal=force)
-        text[force] = "".join(views.csv_blocks(dict(p) | {"columns": "state"}, 5000))
-        assert seen == [code if force else TAYLOR2_FAST]
-    assert text[False] == text[True] and len(text[False].splitlines()) > 4000
 
 
 def test_simulate_arrays_draws_the_reference_columns():

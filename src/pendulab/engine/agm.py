@@ -69,13 +69,12 @@ N_TABLE = 256
 
 
 def _sin_cos_table() -> np.ndarray:
-    """Rows ``(sin y_i, cos y_i)`` as double-doubles, ``y_i = i/N_TABLE``, ``0 <= y_i <= pi + 1/N``.
+    """Rows ``(sin y_i, cos y_i)`` as double-doubles, ``y_i = i/N_TABLE``, ``0 <= y_i <= pi/2 + 1/N``
+    (:func:`half_angle_cos` reads them up to ``y = pi/2``).
 
-    :func:`half_angle_cos` reads the rows up to ``pi/2 + 1/N``, the Taylor kernels' table
-    sine and cosine (``pendulab.engine.fast.table_sin_cos``) the leading doubles of all.
     In 50-digit decimal arithmetic (the standard library's): the series of
     ``sin h, cos h`` at ``h = 1/N_TABLE`` (exact in decimal), then the rotation
-    ``(s, c) -> (s cos h + c sin h, c cos h - s sin h)``, whose 800 steps lose about 6
+    ``(s, c) -> (s cos h + c sin h, c cos h - s sin h)``, whose 400 steps lose about 6
     digits; each value then rounds to its nearest double-double. ``tests/test_agm_rounding.py``
     checks every entry against mpmath.
     """
@@ -94,7 +93,7 @@ def _sin_cos_table() -> np.ndarray:
                 sin_h += term if k % 4 == 1 else -term
             term = term * h / (k + 1)
         s, c = Decimal(0), Decimal(1)
-        for _ in range(int(math.pi * N_TABLE) + 2):
+        for _ in range(int(math.pi / 2 * N_TABLE) + 2):
             row = []
             for d in (s, c):
                 hi = float(d)

@@ -23,7 +23,7 @@ import numpy as np
 from numba import njit
 
 from ..core.interrupt import pieces, run_pieces
-from .kernels import drive, kernel_code
+from .kernels import drive
 
 #: States per buffer of the driver (16 bytes each): small enough to stay in the cache
 #: between the driver writing it and the fold reading it.
@@ -145,10 +145,8 @@ def piece(method, order, c, h, n, i0, i1, z, buf1, buf2, scale, e0, value, step,
 def run(method: int, order: int, alpha: float, omega0: float, c: float, h: float, n: int, nb: int,
         samples: np.ndarray, size: int) -> Record:
     """Steps ``0 .. n`` (``n >= 1``) of a run from ``(alpha, omega0)`` (``c = -g/l``) of the method
-    of code ``method``, through the kernel code :func:`pendulab.engine.kernels.kernel_code` chooses
-    (as :func:`pendulab.numerics.simulation.simulate`), in pieces of ``size`` steps
+    of code ``method`` (the steps of :func:`pendulab.numerics.simulation.simulate`), in pieces of ``size`` steps
     (:func:`pendulab.core.interrupt.run_pieces`: a set event or a signal stops it between two)."""
-    method = kernel_code(method, c, h)
     rec = Record.empty(n, nb, samples)
     scale = 1.0 / (-2.0 * c) if c != 0.0 else 0.0
     e0 = math.cos(alpha) - omega0 * omega0 * scale

@@ -3,31 +3,24 @@
 Numba kernels on plain floats and arrays. Each step is its formula written once, short
 and literal: :func:`taylor2_step` is the coursework's (3) in the order of operations of
 its program (``pendulab/programs/taylor.py``, which the report prints), the same points bit
-for bit. :func:`step` dispatches on a kernel code: one branch per integrator of
-:mod:`pendulab.core.methods`, and one more, :data:`TAYLOR2_FAST`, for (3) through a certified
-table sine and cosine (:func:`taylor2_fast_step`, :mod:`pendulab.engine.fast`): the literal
-step's doubles, fewer library calls. :func:`kernel_code` says which code a run takes.
-:func:`drive` runs a trajectory of any code, :func:`search_return` the period search; no
-method has a loop of its own. :func:`agm_means` runs the AGM of (7) over arrays.
+for bit. :func:`step` dispatches on a method's kernel code: one branch per integrator of
+:mod:`pendulab.core.methods`. :func:`drive` runs a trajectory of any code,
+:func:`search_return` the period search; no method has a loop of its own.
+:func:`agm_means` runs the AGM of (7) over arrays.
 Compiled kernels are cached on disk (``cache=True``): a second run does not compile.
 """
 import math
 
 import numpy as np
 from numba import njit, prange
-from numba.extending import register_jitable
 
 from ..core.interrupt import CHUNK_COST, pieces, run_pieces
 from ..core.methods import MAX_TAYLOR_ORDER, Kernel, Status, cost_per_step
-from .agm import PI_HI, agm
-from .fast import FAST_MAX_K, certified_step, likely
+from .agm import agm
 from .libm import cos, sin
 
 #: Method codes understood by :func:`step` (the registry's, as plain ints for numba).
 TAYLOR2, RK4, VERLET, TAYLOR = (int(k) for k in (Kernel.TAYLOR2, Kernel.RK4, Kernel.VERLET, Kernel.TAYLOR))
-#: The code of (3) through :func:`taylor2_fast_step`: internal, never a method a person
-#: chooses (:func:`kernel_code` picks it for taylor2).
-TAYLOR2_FAST = max(Kernel) + 1
 
 
 @njit(cache=True, nogil=True, inline="always")
@@ -37,25 +30,6 @@ def taylor2_step(z1, z2, h, c):
     z1_next = z1 + h * z2 + 0.5 * h * h * c * s
     z2_next = z2 + h * c * s + 0.5 * h * h * c * z2 * cos(z1)
     return z1_next, z2_next
-
-
-@njit(cache=True, nogil=True, inline="always")
-def taylor2_fast_step(z1, z2, h, c):
-    """:func:`taylor2_step`, bit for bit, mostly without calling the C library.
-
-    (3) with the table's sine and cosine where :func:`pendulab.engine.fast.certified_step`'s
-    rounding test proves the result equal to the C library's; otherwise (about 1 step in
-    10^3 at ``h = 1e-6``; a zero or a NaN also goes this way), and where ``|z1| >= pi`` or
-    the step is coarse (``|K| > FAST_MAX_K``, where the test would fail often), it is
-    :func:`taylor2_step`. The next angle waits on the table, not on the test: the test's
-    branch is almost always taken.
-    """
-    K = 0.5 * h * h * c
-    if likely(abs(z1) < PI_HI and abs(K) <= FAST_MAX_K):
-        certified, z1_next, z2_next = certified_step(z1, z2, h, c, K)
-        if likely(certified):
-            return z1_next, z2_next
-    return taylor2_step(z1, z2, h, c)
 
 
 @njit(cache=True, nogil=True, inline="always")
@@ -135,25 +109,11 @@ def step(method, order, z1, z2, h, c):
     """
     if method == TAYLOR2:
         return taylor2_step(z1, z2, h, c)
-    if method == TAYLOR2_FAST:
-        return taylor2_fast_step(z1, z2, h, c)
     if method == RK4:
         return rk4_step(z1, z2, h, c)
     if method == VERLET:
         return verlet_step(z1, z2, h, c)
     return taylor_step(order, z1, z2, h, c)
-
-
-@register_jitable
-def kernel_code(method, c, h):
-    """The code :func:`step` runs for ``method`` (a :class:`~pendulab.core.methods.Kernel`) with
-    ``c`` and ``h``: :data:`TAYLOR2_FAST` for (3) with steps fine enough for the table's
-    rounding test to pass nearly always (``|h^2 c / 2| <= FAST_MAX_K``), ``method`` otherwise.
-    The points are the same either way; this chooses the faster. Callable from kernels too.
-    """
-    if method == TAYLOR2 and abs(0.5 * h * h * c) <= FAST_MAX_K:
-        return TAYLOR2_FAST
-    return method
 
 
 @njit(cache=True, nogil=True)
@@ -180,7 +140,6 @@ def drive(method, order, a, b, c, h, i0, i1, stride, n, z1, z2):
 def piece_steps(method, order) -> int:
     """Steps per piece of a run cut into pieces (:func:`pendulab.core.interrupt.run_pieces`): the
     same cost for every method, so that Ctrl+C waits one piece at most (tens of ms)."""
-    method = TAYLOR2 if method == TAYLOR2_FAST else method  # no dearer than (3)
     name = f"taylor:{order}" if method == TAYLOR else Kernel(method).name.lower()
     return max(1, int(CHUNK_COST / cost_per_step(name)))
 
@@ -189,10 +148,9 @@ def thinned(method, order, alpha, c, h, n, stride, size):
     """The points ``Z_j`` for ``j = 0, stride, 2 stride, ...`` and ``j = n`` (``size`` of them),
     as two new arrays, for the method of code ``method`` (a :class:`~pendulab.core.methods.Kernel`).
 
-    :func:`drive` of :func:`kernel_code`'s code in pieces, each from the state the one before
-    ended in: the same points, bit for bit, and a signal stops the run between two pieces.
+    :func:`drive` in pieces, each from the state the one before ended in: the same points,
+    bit for bit, and a signal stops the run between two pieces.
     """
-    code = kernel_code(method, c, h)
     z1 = np.empty(size)
     z2 = np.empty(size)
     z1[0], z2[0] = alpha, 0.0
@@ -200,11 +158,11 @@ def thinned(method, order, alpha, c, h, n, stride, size):
 
     def run(lo, hi):
         a, b, k = state
-        a, b, kept = drive(code, order, a, b, c, h, lo, hi, stride, n, z1[k:], z2[k:])
+        a, b, kept = drive(method, order, a, b, c, h, lo, hi, stride, n, z1[k:], z2[k:])
         state[:] = a, b, k + kept
         return False
 
-    run_pieces(pieces(n, piece_steps(code, order)), run)
+    run_pieces(pieces(n, piece_steps(method, order)), run)
     return z1, z2
 
 
@@ -311,20 +269,19 @@ def search_return(method, order, c, h, n, lo, hi, z1w, z2w):
 
 
 def first_return_pieces(method, order, alpha, c, h, n):
-    """:func:`first_return` of :func:`kernel_code`'s code for the method of code ``method`` (a
+    """:func:`first_return` for the method of code ``method`` (a
     :class:`~pendulab.core.methods.Kernel`), run in pieces of :func:`search_return` (the same
     result, bit for bit): a signal stops it between two pieces (:func:`pendulab.core.interrupt.run_pieces`)."""
-    code = kernel_code(method, c, h)
     z1w = np.zeros(5)
     z2w = np.zeros(5)
     z1w[2] = alpha
     out = [NO_RETURN, n]
 
     def run(lo, hi):
-        out[:] = search_return(code, order, c, h, n, lo, hi, z1w, z2w)
+        out[:] = search_return(method, order, c, h, n, lo, hi, z1w, z2w)
         return out[0] != NO_RETURN  # found, or stopped for good
 
-    run_pieces(pieces(n, piece_steps(code, order)), run)
+    run_pieces(pieces(n, piece_steps(method, order)), run)
     status, j = out
     if status != FOUND:
         z1w[:] = 0.0

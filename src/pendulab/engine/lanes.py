@@ -35,7 +35,6 @@ from .kernels import (
     NO_RETURN,
     TAYLOR2,
     UNDECIDED,
-    kernel_code,
     piece_steps,
     return_rule,
     search_return,
@@ -48,8 +47,7 @@ def first_returns_serial(method, order, alphas, cs, h, n_steps):
     :func:`_serial` with every step in one call.
 
     Releases the GIL. The same results, bit for bit, as
-    :func:`pendulab.numerics.crossing.estimate_period` (the same kernel code,
-    :func:`pendulab.engine.kernels.kernel_code`).
+    :func:`pendulab.numerics.crossing.estimate_period` (the same kernel).
     """
     m = len(alphas)
     status = np.zeros(m, np.int64)
@@ -232,7 +230,7 @@ def _serial(method, order, alphas, cs, h, n_steps, status, j, z1w, z2w, at, budg
             z2w[i, :] = 0.0
             z1w[i, 2] = alphas[i]
         hi = min(n, lo + budget)
-        s, ji = search_return(kernel_code(method, cs[i], h), order, cs[i], h, n, lo, hi, z1w[i], z2w[i])
+        s, ji = search_return(method, order, cs[i], h, n, lo, hi, z1w[i], z2w[i])
         budget -= max(hi - lo, 1)
         if s != NO_RETURN or hi >= n:  # this pendulum's search is over
             status[i], j[i] = s, ji

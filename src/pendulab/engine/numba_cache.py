@@ -36,7 +36,7 @@ _DONE: list[str] = []
 #: transitively, the package modules they import (tests/test_layers.py checks the list).
 KERNEL_SOURCES = (
     "core/errors.py", "core/interrupt.py", "core/methods.py",
-    "engine/agm.py", "engine/fast.py", "engine/fold.py", "engine/kernels.py", "engine/lanes.py",
+    "engine/agm.py", "engine/fold.py", "engine/kernels.py", "engine/lanes.py",
     "engine/libm.py", "engine/mean.py", "engine/numba_cache.py",
 )
 #: The package's folder: KERNEL_SOURCES are relative to it.

@@ -260,14 +260,14 @@ def stuck(code: int, order: int, alpha: float, c: float, step: float) -> bool:
     return. Above it, subnormal steps still carry the motion (plain (3) in doubles returns
     at ``alpha = 1e-320``, ``h = 1e-3``: ``tests/test_crossing.py``).
     """
-    from ..engine.kernels import kernel_code, search_return
+    from ..engine.kernels import search_return
 
     if not alpha * abs(c) * step < sys.float_info.min:  # a normal change of theta' moves it
         return False
     z1w, z2w = np.zeros(5), np.zeros(5)
     z1w[2] = alpha
     # one step of the search's own kernel (no other to compile): the window ends at Z_1
-    search_return(kernel_code(code, c, step), order, c, step, 2, 0, 1, z1w, z2w)
+    search_return(code, order, c, step, 2, 0, 1, z1w, z2w)
     return bool(z1w[2] == alpha and z2w[2] == 0.0)
 
 

@@ -288,14 +288,12 @@ def trajectory_csv(params: Mapping[str, str]) -> tuple[Iterator[str], str]:
 
 def csv_blocks(p: Mapping[str, Any], points: int) -> Iterator[str]:
     """The CSV text in blocks of :data:`CSV_BLOCK` rows: header first, then the kept steps."""
-    from ..engine.kernels import kernel_code
     from ..numerics.simulation import method_code, step_count, stride_for
 
     method, order = method_code(p["method"])
     n = step_count(0.0, p["t_max"], p["step"])
     stride = stride_for(n, points)  # at most ``points`` rows, step 0's included
     h, c = p["step"], -p["g"] / p["length"]
-    code = kernel_code(method, c, h)  # as simulation.simulate: the same points
     full = p if p.get("columns", "state") == "all" else None
     w0 = float(p.get("omega0", 0.0))
     first = _csv_rows(p, np.zeros(1), np.array([p["amplitude"]]), np.array([w0])) if full else f"{0.0!r},{p['amplitude']!r},{w0!r}\n"
@@ -304,7 +302,7 @@ def csv_blocks(p: Mapping[str, Any], points: int) -> Iterator[str]:
     i = 0
     while i < n:
         i1 = min(n, i + stride * CSV_BLOCK)
-        state, block = _csv_block(code, order, state, c, h, i, i1, stride, n, full)
+        state, block = _csv_block(method, order, state, c, h, i, i1, stride, n, full)
         i = i1
         yield block
 
