@@ -230,10 +230,16 @@ def test_any_scalar_pendulum_is_correctly_rounded(alpha, length, g):
     assert got == agm_period(np.array([length]), np.array([alpha]), g)[0]
 
 
-@pytest.mark.parametrize("bad", [math.pi, -1e-300, math.nan, math.inf, 7.0, -0.5])
+@pytest.mark.parametrize("bad", [math.pi, -1e-300, math.inf, 7.0, -0.5])
 def test_scalar_bad_amplitudes_are_refused(bad):
     with pytest.raises(ValueError, match="amplitude"):
         agm_period(1.0, bad)
+
+
+def test_scalar_nan_gives_nan_by_either_route():
+    # numpy's convention (numerics/arrays.py): a NaN argument gives NaN, not an error.
+    for args in ((1.0, math.nan), (math.nan, 1.0), (np.float64(1.0), np.float64(math.nan))):
+        assert math.isnan(agm_period(*args)) and math.isnan(agm_period(*args, iterations=7))
 
 
 @pytest.mark.parametrize(("length", "g", "name"), [(0.0, G, "length"), (-1.0, G, "length"), (math.inf, G, "length"),
