@@ -62,6 +62,7 @@ def test_scalar_path_gives_the_same_doubles():
         assert agm_period(length, alpha) == agm_period(np.array([length]), np.array([alpha]))[0]
 
 
+@pytest.mark.slow
 def test_double_double_value_is_within_the_error_bound():
     # The kernel's unrounded th + tl against the reference at 60 digits.
     alpha = np.concatenate([RANDOM_ALPHA[:300], HARD])

@@ -56,6 +56,7 @@ def test_the_table_holds_every_public_array_function():
     assert takes_arrays == {"agm_period", "small_angle_period", "exact_motion", "approximation_errors"}
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("name", NAMES)
 @settings(max_examples=25, deadline=None)
 @given(data=st.data())

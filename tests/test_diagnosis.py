@@ -133,6 +133,7 @@ LESSON = {"length": "1", "amplitude": "30deg", "t_max": "20"}
 STEPS = (0.6, 0.5, 0.3, 0.25, 0.1, 0.01)
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("h", STEPS)
 @pytest.mark.parametrize("method", ["taylor:1", "taylor2", "rk4", "verlet"])
 def test_each_method_and_step_is_flagged_as_its_energy_behaves(method, h):

@@ -44,6 +44,7 @@ def _one_call(method, order, alpha, c, h, n):
     return z1, z2
 
 
+@pytest.mark.slow
 @settings(max_examples=25, deadline=None)
 @given(m=st.sampled_from(METHODS), alpha=st.floats(0.01, 3.1), h=st.floats(1e-3, 0.3),
        n=st.integers(0, 700), stride=st.integers(1, 900), piece=st.integers(1, 300))

@@ -171,6 +171,7 @@ def test_cli_sweep_bad_input(args, needle, capsys):
     assert needle in err and len(err.strip().splitlines()) == 1 and "Traceback" not in err
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("threads", [1, 2, 3])
 @pytest.mark.parametrize("code", [0, 1])  # taylor2 (lock-step lanes), rk4 (serial kernel)
 def test_threads_give_one_thread_bit_for_bit(threads, code):

@@ -192,6 +192,7 @@ FIELDS = {"/api/period": ["length", "amplitude", "g"], "/api/motion": ["length",
 BASE = {"length": "1", "amplitude": "1"}
 
 
+@pytest.mark.slow
 @settings(max_examples=150, deadline=None)
 @given(st.sampled_from(sorted(FIELDS)), st.data())
 def test_no_numeric_overflow_is_a_500(client, route, data):
