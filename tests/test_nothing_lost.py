@@ -590,3 +590,45 @@ def test_a_cache_file_replaced_by_a_folder_is_compiled_again(tmp_path, kind):
         f.mkdir()
     res = pendulab("simulate", "--t-max", "0.2", env=env)
     assert res.returncode == 0 and b"Traceback" not in res.stderr and len(res.stderr.splitlines()) <= 1, res.stderr
+
+
+# --- names laid out within the page ------------------------------------------------------------------
+
+
+@given(st.text(st.characters(codec="utf-8", exclude_categories=("Cs",)), max_size=100))
+def test_break_points_are_invisible_and_bound_every_unbroken_run(text):
+    import unicodedata
+
+    from pendulab.report.typeset import BREAK_EVERY, breakable
+
+    out = breakable(text)
+    assert out.replace("\u200b", "") == text.replace("\u200b", "")
+    for run in out.replace("\u200b", " ").split():
+        marks = sum(bool(unicodedata.combining(c)) or c in "\u200c\u200d" for c in run)
+        assert len(run) <= BREAK_EVERY + marks + 1 or marks > 0
+
+
+@pytest.mark.slow
+def test_an_80_character_name_stays_in_the_keys_column(tmp_path, cli):
+    """A name of 80 letters with no space and one of 80 characters with spaces: in the key's
+    PDF every piece of them lies left of the next column (pdftotext's word boxes)."""
+    pytest.importorskip("typst")
+    import shutil
+    import xml.etree.ElementTree as ET
+
+    if shutil.which("pdftotext") is None:
+        pytest.skip("pdftotext (poppler-utils) is not installed")
+    long = "W" * inputs.MAX_NAME
+    spaced = ("Maria da Conceição Albuquerque Vasconcelos de Magalhães Sobral Pereira Fonseca Luís"
+              )[:inputs.MAX_NAME]
+    groups = tmp_path / "g.csv"
+    groups.write_text(f"262 407 634 | {spaced}; {long}; Ana\n")
+    res = cli("key", "--groups", groups, "--output", tmp_path / "k.pdf")
+    assert res.code == 0, res.err
+    subprocess.run(["pdftotext", "-bbox", "-f", "1", "-l", "1", tmp_path / "k.pdf", tmp_path / "k.html"], check=True)
+    words = [(w.text or "", float(w.get("xMin")), float(w.get("xMax")))
+             for w in ET.parse(tmp_path / "k.html").getroot().iter("{http://www.w3.org/1999/xhtml}word")]
+    sum_left = next(x0 for text, x0, _ in words if text == "sum")
+    pieces = [w for w in words if "WWW" in w[0] or w[0] in ("Vasconcelos", "Magalhães", "Fonseca")]
+    assert sum("W" * 1 in w[0] for w in pieces) >= 2 and pieces
+    assert all(x1 < sum_left for _, _, x1 in pieces), (sum_left, pieces)

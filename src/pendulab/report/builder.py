@@ -18,7 +18,7 @@ from typing import Any
 
 from . import sections
 from .document import LANGUAGES, Doc, check_lang, load_catalogue
-from .typeset import needs_system_fonts, typeset
+from .typeset import breakable, needs_system_fonts, typeset
 
 __all__ = ["LANGUAGES", "build_report", "compile_pdf", "load_catalogue", "section_data"]
 
@@ -108,7 +108,7 @@ def compile_pdf(doc: Doc, students: Sequence[int], names: Sequence[str] | None =
         "lang": doc.lang,
         "students": ", ".join(str(s) for s in students),
         # Plain strings, never markup: a name is printed as typed, whatever its characters.
-        "cover": [{"name": n, "number": str(s)} for n, s in zip(names or (), students)],
+        "cover": [{"name": breakable(n), "number": str(s)} for n, s in zip(names or (), students)],
         "t": doc.text(),
         "tables": doc.tables,
         "figures": doc.figures,

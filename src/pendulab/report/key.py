@@ -17,7 +17,7 @@ from ..core.atomic import check_writable, temp_folder, write_bytes, write_togeth
 from ..core.errors import InputError
 from ..jobs.key import FORMATS, REASON_VALUES, TOLERANCES, AnswerKey, Tolerance, class_path, output_format
 from .markup import fixed, num, sci
-from .typeset import needs_system_fonts, typeset
+from .typeset import breakable, needs_system_fonts, typeset
 from .words import sentence
 
 
@@ -309,7 +309,7 @@ def _pdf(key: AnswerKey) -> bytes:
         cells += [sci(ip["error_estimate"], 2), "yes" if ip["negligible"] else "no",
                   "" if g["duplicate_of"] is None else f"*line {g['duplicate_of']}*"]
         rows.append(cells)
-        names.append("; ".join(g["names"]) if g["names"] else "")  # plain text, never markup
+        names.append(breakable("; ".join(g["names"])) if g["names"] else "")  # plain text, never markup
     steps = [sci(e["step"], 1) for e in key.groups[0]["estimates"]]
     data = {"rows": rows, "names": names, "steps": steps, "count": len(rows), "blocks": class_blocks(key),
             "duplicates": sum(g["duplicate_of"] is not None for g in key.groups)}

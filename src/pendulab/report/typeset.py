@@ -27,6 +27,30 @@ def timestamp() -> int:
 EMBEDDED_RANGES = ((0x0000, 0x052F), (0x1E00, 0x1FFF), (0x2000, 0x206F))
 
 
+#: The longest run of a name without a break opportunity: a column of the key or a line of
+#: the cover holds it at any allowed length (80 characters of one word).
+BREAK_EVERY = 12
+
+
+def breakable(text: str, every: int = BREAK_EVERY) -> str:
+    """``text`` with a zero-width space (a line-break opportunity, invisible) after each
+    ``every`` characters of a run without spaces; never inside a letter's combining marks
+    or a joined pair (ZWJ, ZWNJ)."""
+    import unicodedata
+
+    out: list[str] = []
+    run = 0
+    for c in text:
+        if c.isspace():
+            run = 0
+        elif run >= every and not unicodedata.combining(c) and c not in "\u200c\u200d" and out[-1] not in "\u200c\u200d":
+            out.append("\u200b")
+            run = 0
+        out.append(c)
+        run += not c.isspace()
+    return "".join(out)
+
+
 def needs_system_fonts(texts: Any) -> bool:
     """Whether a text of ``texts`` (student names) has a letter beyond the embedded fonts'
     scripts (CJK, Arabic, Devanagari, ...): then the system's fonts are searched too."""
