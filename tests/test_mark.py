@@ -401,3 +401,19 @@ def test_a_formula_in_an_answer_is_never_run():
     pt = sheet.render(mark.mark_class(entries, rows), "csv", dialect="excel-pt").decode("utf-8-sig")
     pt_cells = [c for r in csv.reader(io.StringIO(pt), delimiter=";") for c in r]
     assert "-0.3" in pt_cells and "'=HYPERLINK(1)" in pt_cells  # an answer as typed, never run
+
+
+@pytest.mark.slow
+@pytest.mark.parametrize(("redirect", "reason"), [(">&-", "Bad file descriptor"), ("> /dev/full", "No space left")])
+def test_template_on_a_bad_stdout_is_one_line(tmp_path, redirect, reason):
+    """The answers template written to standard output goes through the checked writer."""
+    import subprocess
+    import sys
+
+    groups = tmp_path / "g.txt"
+    groups.write_text("262 407 634\n")
+    res = subprocess.run(f"{sys.executable} -m pendulab key --groups {groups} --template answers {redirect}",
+                         shell=True, capture_output=True, text=True, timeout=300)
+    assert res.returncode == 1
+    lines = res.stderr.strip().splitlines()
+    assert len(lines) == 1 and lines[0].startswith("pendulab key: error: cannot write to standard output: " + reason)

@@ -227,6 +227,18 @@ class _GuardedStdout:
         except (OSError, WriteError) as exc:
             raise StdoutError(exc) from None
 
+    def write_bytes(self, data: bytes) -> None:
+        """Bytes through the checked stream, or the binary buffer of another one (a test's capture)."""
+        try:
+            if hasattr(self._stream, "write_bytes"):
+                self._stream.write_bytes(data)
+            else:
+                self._stream.flush()
+                self._stream.buffer.write(data)
+                self._stream.buffer.flush()
+        except (OSError, WriteError) as exc:
+            raise StdoutError(exc) from None
+
     def __getattr__(self, name: str) -> Any:
         return getattr(self._stream, name)
 

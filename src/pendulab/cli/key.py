@@ -99,8 +99,7 @@ def _template(groups, template: str, output: str | None, dialect: str, groups_fi
     data = (template_csv(marking.template_rows(groups), dialect) if template == "answers"  # type: ignore[arg-type]
             else scheme_json(marking.default_scheme()))
     if output is None:
-        sys.stdout.buffer.write(data)
-        sys.stdout.flush()
+        sys.stdout.write_bytes(data)  # type: ignore[union-attr]  # the command's checked stdout
         return
     from ..core.atomic import check_not_input, write_bytes
 

@@ -126,6 +126,13 @@ class CheckedText(io.TextIOBase):
             self.flush()
         return len(text)
 
+    def write_bytes(self, data: bytes) -> None:
+        """Bytes as they are (a CSV with its BOM), after the text already written."""
+        if self._closed_fd:
+            raise WriteError(self._where, errno.EBADF, os.strerror(errno.EBADF))
+        self._pending += data
+        self.flush()
+
     def flush(self) -> None:
         if self._pending:
             data, self._pending = bytes(self._pending), bytearray()
