@@ -19,6 +19,7 @@ import resource
 import socket
 import subprocess
 import sys
+import types
 
 import click
 import pytest
@@ -42,6 +43,7 @@ BASE = {
     "report": [],
     "programs": ["--output", "programs"],
     "key": ["--groups", "groups.txt", "--output", "key.json"],
+    "mark": ["--groups", "groups.txt", "--answers", "answers.csv", "--output", "marked.json"],
     "serve": ["--host", "127.0.0.1"],
     "approximations": [],
     "sweep": ["-a", "10deg:20deg:3", "--step", "1e-2", "--method", "taylor2"],
@@ -73,15 +75,20 @@ def sandbox(tmp_path_factory):
     import uvicorn
 
     import pendulab.jobs.key
+    import pendulab.jobs.mark
     import pendulab.report
     import pendulab.report.key
+    import pendulab.report.mark
     import pendulab.web.server
 
     (folder / "groups.txt").write_text("262 407 634\n", encoding="utf-8")
+    (folder / "answers.csv").write_text("line,students\n1,262 407 634\n", encoding="utf-8")
     with pytest.MonkeyPatch.context() as mp, contextlib.chdir(folder):
         mp.setattr(pendulab.report, "build_report", lambda *a, **k: None)
         mp.setattr(pendulab.jobs.key, "answer_key", lambda *a, **k: None)
         mp.setattr(pendulab.report.key, "write_key", lambda *a, **k: None)
+        mp.setattr(pendulab.jobs.mark, "mark_class", lambda *a, **k: types.SimpleNamespace(groups=()))
+        mp.setattr(pendulab.report.mark, "write_marks", lambda *a, **k: None)
         mp.setattr(uvicorn, "run", lambda *a, **k: None)
         mp.setattr(pendulab.web.server, "run", lambda *a, **k: None)  # serve's own runner
         mp.setattr(socket, "getaddrinfo", numeric_only)

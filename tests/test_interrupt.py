@@ -198,7 +198,7 @@ def test_an_interrupted_key_keeps_the_old_output_and_leaves_no_temporary_file(tm
     """key on many groups, stopped by SIGINT or SIGTERM: the older key and its class file intact
     (or both new, where the run had finished), nothing left beside them."""
     groups = tmp_path / "groups.txt"
-    groups.write_text("\n".join(f"{100 + i} {200 + 3 * i} {300 + 7 * i}" for i in range(1000)) + "\n")
+    groups.write_text("\n".join(f"{10000 + i} {20000 + 3 * i} {50000 + 7 * i}" for i in range(1000)) + "\n")  # no student twice
     out, side = tmp_path / "key.csv", tmp_path / "key-class.csv"
     for i, sig in enumerate([signal.SIGINT, signal.SIGTERM] * 3):
         out.write_text("old key\n")

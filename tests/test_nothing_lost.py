@@ -558,10 +558,12 @@ def test_no_writable_temporary_folder_is_one_line(request):
 
     if not os.path.isdir("/dev/shm"):
         pytest.skip("no /dev/shm to hold the test's files outside /tmp")
-    tmp_path = Path(tempfile.mkdtemp(dir="/dev/shm"))  # /tmp is hidden in the namespace
+    tmp_path = Path(tempfile.mkdtemp(dir="/dev/shm"))  # /tmp is read-only in the namespace
     request.addfinalizer(lambda: shutil.rmtree(tmp_path, ignore_errors=True))
     groups = groups_file(tmp_path, 1)
-    script = ("mount -t tmpfs -o ro tmpfs /tmp && mount -t tmpfs -o ro tmpfs /var/tmp && cd /proc && "
+    # Read-only binds, not empty mounts: the interpreter itself may live under /tmp (a clone there).
+    script = ("mount --bind /tmp /tmp && mount -o remount,bind,ro /tmp && "
+              "mount --bind /var/tmp /var/tmp && mount -o remount,bind,ro /var/tmp && cd /proc && "
               f"exec {sys.executable} -m pendulab \"$@\"")
     def run(*args):
         return subprocess.run(["unshare", "-m", "sh", "-c", script, "sh", *map(str, args)], capture_output=True,

@@ -7,6 +7,7 @@ Reference periods: mpmath's complete elliptic integral at 30 digits.
 from __future__ import annotations
 
 import asyncio
+import contextlib
 import math
 import time
 
@@ -38,10 +39,26 @@ def requests() -> list[tuple[dict, float | None]]:
     return out
 
 
+#: Connections from one address: a class's requests come from many (the server holds at most
+#: ``web.server.MAX_PER_CLIENT`` of one), so the tests spread theirs over loopback addresses.
+PER_ADDRESS = 16
+
+
+def clients(base: str, n: int, timeout: float, first: int = 2) -> list[httpx.AsyncClient]:
+    """Enough clients for ``n`` connections at once, each from its own address 127.0.0.``first``, ..."""
+    count = -(-n // PER_ADDRESS)
+    limits = httpx.Limits(max_connections=PER_ADDRESS, max_keepalive_connections=PER_ADDRESS)
+    return [httpx.AsyncClient(base_url=base, limits=limits, timeout=httpx.Timeout(timeout),
+                              transport=httpx.AsyncHTTPTransport(local_address=f"127.0.0.{first + k}", limits=limits))
+            for k in range(count)]
+
+
 async def fire(base: str, cases) -> list[httpx.Response]:
-    limits = httpx.Limits(max_connections=N_REQUESTS, max_keepalive_connections=N_REQUESTS)
-    async with httpx.AsyncClient(base_url=base, limits=limits, timeout=httpx.Timeout(60.0)) as client:
-        tasks = [client.get("/api/simulate", params=q) for q, _ in cases]
+    pool = clients(base, N_REQUESTS, 60.0)
+    async with contextlib.AsyncExitStack() as stack:
+        for c in pool:
+            await stack.enter_async_context(c)
+        tasks = [pool[i % len(pool)].get("/api/simulate", params=q) for i, (q, _) in enumerate(cases)]
         return await asyncio.wait_for(asyncio.gather(*tasks), timeout=120)
 
 
@@ -85,17 +102,19 @@ async def page_while_busy(base: str, n_heavy: int) -> tuple[list[httpx.Response]
     Returns the heavy answers, each light answer's status and seconds, and how many heavy
     requests had finished when the last light one answered.
     """
-    limits = httpx.Limits(max_connections=n_heavy + 10, max_keepalive_connections=n_heavy + 10)
     done = 0
+    pool = clients(base, n_heavy, 300.0)  # the class, each student from an address of its own
+    async with contextlib.AsyncExitStack() as stack, httpx.AsyncClient(base_url=base, timeout=300.0) as client:
+        for c in pool:
+            await stack.enter_async_context(c)
 
-    async with httpx.AsyncClient(base_url=base, limits=limits, timeout=httpx.Timeout(300.0)) as client:
-        async def heavy() -> httpx.Response:
+        async def heavy(i: int) -> httpx.Response:
             nonlocal done
-            r = await client.get("/api/simulate", params=HEAVY)
+            r = await pool[i % len(pool)].get("/api/simulate", params=HEAVY)
             done += 1
             return r
 
-        tasks = [asyncio.create_task(heavy()) for _ in range(n_heavy)]
+        tasks = [asyncio.create_task(heavy(i)) for i in range(n_heavy)]
         await asyncio.sleep(0.3)  # all sent, the first ones computing
         light = {}
         for path in ("/", "/api/config", "/api/period?length=1&amplitude=30deg"):

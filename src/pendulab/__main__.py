@@ -36,9 +36,12 @@ def run() -> int:
 
         code = main()
     except KeyboardInterrupt as exc:  # while the command line loaded, or just after the command
-        signum = signal_of(exc)  # loaded, unless the signal came before the handlers were set
+        try:
+            signum, said = signal_of(exc), word(signal_of(exc))
+        except NameError:  # Ctrl+C while core.interrupt itself loaded: Python's own handler, so SIGINT
+            signum, said = 2, "interrupted"
         try:  # noqa: SIM105 (contextlib is not loaded yet)
-            sys.stderr.write(f"pendulab: {word(signum)}\n")
+            sys.stderr.write(f"pendulab: {said}\n")
         except (OSError, ValueError, AttributeError):
             pass  # standard error gone: silence
         code = 128 + signum
