@@ -7,7 +7,7 @@ import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
-from pendulab.core.errors import InputError, LeftOscillationError, NoReturnError
+from pendulab.core.errors import InputError, LeftOscillationError, NoReturnError, NumericalError
 from pendulab.core.methods import Status
 from pendulab.numerics.crossing import estimate_period, observed_orders, search_period
 from pendulab.numerics.period import agm_period
@@ -296,3 +296,16 @@ def test_return_rule_decides_as_the_coursework_program(z1, z1n, z2, z2n, i, n):
     else:
         expected = (FOUND, i)
     assert return_rule(i, n, z1n, z2, z2n) == expected
+
+
+def test_subnormal_steps_whose_nodes_coincide_are_a_status():
+    # 5e-324 at h = 0.25: theta' moves by a few subnormals a step and returns (plain (3) too),
+    # but two of the five z2 around the sign change are equal: no inverse cubic through them.
+    from pendulab.jobs.sweep import sweep
+
+    s = search_period(1.0, 5e-324, 0.25)
+    assert s.status == Status.NODES_COINCIDE and s.estimate is None and not s.underflow
+    assert plain_first_return(5e-324, 0.25, s.t_max) == s.j
+    with pytest.raises(NumericalError, match="subnormal steps"):
+        estimate_period(1.0, 5e-324, 0.25)
+    assert list(sweep(np.array([5e-324]), [0.25])["status"]) == ["nodes_coincide"]

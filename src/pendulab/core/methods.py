@@ -36,6 +36,7 @@ class Status(IntEnum):
     NO_RETURN = 1  # no return to P within the steps allowed
     LEFT_OSCILLATION = 2  # |theta| reached pi: the discrete pendulum went over the top
     TOO_EARLY = 3  # the sign change came before two earlier points existed
+    NODES_COINCIDE = 4  # theta' moves in subnormal steps: two of the five interpolation nodes z2 coincide
 
 
 @dataclass(frozen=True)

@@ -131,7 +131,9 @@ class PeriodSearch(Result):
     Attributes
     ----------
     status : Status
-        ``FOUND``, ``NO_RETURN``, ``LEFT_OSCILLATION`` or ``TOO_EARLY`` (``methods.Status``).
+        ``FOUND``, ``NO_RETURN``, ``LEFT_OSCILLATION``, ``TOO_EARLY`` or ``NODES_COINCIDE``
+        (``methods.Status``; the last where ``theta'`` moves in subnormal steps so coarse that
+        two of the five nodes ``z2`` of 3(d) are equal: no inverse cubic passes through them).
     estimate : PeriodEstimate or None
         The estimate where ``status`` is ``FOUND``.
     length, amplitude, step, g, t0, t_max : float
@@ -226,6 +228,8 @@ def search_period(
         return PeriodSearch(status, t_left=t0 + (j + 1) * step, j=int(j), **common)
     if status != Status.FOUND:
         return PeriodSearch(status, j=int(j), **common)
+    if len(np.unique(z2w)) != len(z2w):  # only where theta' moves in subnormal steps
+        return PeriodSearch(Status.NODES_COINCIDE, j=int(j), **common)
     # Times relative to t0, t_k = k h (6): the nodes j-2 .. j+2.
     t = (j - 2 + np.arange(5)) * step
     z2_j, z2_j1 = z2w[2], z2w[3]
@@ -331,6 +335,12 @@ def search_error(s: PeriodSearch) -> NumericalError:
             f"the discrete pendulum went over the top (|theta| > pi) at t = {s.t_left:.6g} s: "
             f"step h = {step:g} is too large for amplitude {alpha:.6g} rad with method {s.method}; use a smaller step",
             t=s.t_left,
+        )
+    if s.status == Status.NODES_COINCIDE:
+        return NumericalError(
+            f"theta' moves in subnormal steps at amplitude {alpha:.3g} rad: two of the five values of theta' around "
+            f"its sign change at step j = {s.j} are equal, so no inverse cubic (3(d)) passes through them; "
+            "use a larger amplitude"
         )
     return NumericalError(
         f"the sign change of theta' comes at step j = {s.j}, too early for four interpolation nodes: "

@@ -107,6 +107,9 @@ def search_reason(s: PeriodSearch) -> str:
         return (f"amplitude {s.amplitude:.3g} rad is too small for a simulation in double precision: the first step's "
                 f"change of theta', about h (g/l) alpha = {k * s.step:.3g} x {s.amplitude:.3g} rad/s, rounds to zero, so the "
                 f"simulation never moves; use an amplitude above {s.moving_amplitude:.3g} rad or a larger step")
+    if s.status == Status.NODES_COINCIDE:
+        return (f"theta' moves in subnormal steps at amplitude {s.amplitude:.3g} rad: two of the five values of theta' "
+                "around its sign change are equal, so no inverse cubic (3(d)) passes through them; use a larger amplitude")
     if s.status == Status.LEFT_OSCILLATION:
         return (f"the discrete pendulum went over the top (|theta| >= pi) at t = {s.t_left:.6g} s, which the real one "
                 f"released at rest below pi never does: step h = {s.step:g} s is too large for amplitude "

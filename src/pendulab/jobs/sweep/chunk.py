@@ -27,6 +27,9 @@ def run_chunk(code: int, order: int, alphas: np.ndarray, lengths: np.ndarray, g:
     # One thread on a Dask worker (the worker's own threads run the chunks); the same kernel
     # as on all cores, so the same results bit for bit.
     status, j, _, z2w = first_returns(code, order, alphas, cs, h, n_steps, threads=None if parallel else 1)
+    # As search_period: where theta' moves in subnormal steps two nodes z2 can coincide
+    coincide = np.any(np.diff(np.sort(z2w, axis=1), axis=1) == 0, axis=1)
+    status = np.where((status == Status.FOUND) & coincide, int(Status.NODES_COINCIDE), status)
     found = status == Status.FOUND
     t = (j[:, None] - 2 + np.arange(5)) * h  # t_k = k h (6): nodes j-2 .. j+2
     with np.errstate(invalid="ignore", divide="ignore"):
