@@ -5,7 +5,7 @@ Routes
 ``GET /``                     the explorer page (``static/index.html``)
 ``GET /static/{file}``        the page's own script and style
 ``GET /vendor/plotly.min.js`` plotly.js's "basic" bundle (MIT licence, in ``static/``)
-``GET /api/config``           the methods of :mod:`pendulab.core.methods` now, g presets, limits
+``GET /api/config``           the methods of :mod:`pendulab.core.methods`, g presets, limits, the page's words
 ``GET /api/period``           the AGM and small-angle periods
 ``GET /api/simulate``         what the page draws (min/max per column), exact motion, estimates, flags
 ``GET /api/convergence``      period estimates and their errors over a list of steps
@@ -180,6 +180,7 @@ Omega0 = Annotated[str | None, Query(description="Initial angular velocity theta
                                             "released at rest); with enough the pendulum goes over the top")]
 Columns = Annotated[str | None, Query(description="CSV columns: state (t, theta, omega; default) or all "
                                              "(also theta_exact, omega_exact, the global error, the energy error)")]
+Lang = Annotated[str | None, Query(description="The language of the words: en (default) or pt")]
 Steps = Annotated[str | None, Query(description="Steps h, comma-separated, 1 to 40 (default 13 steps from 0.1 to 1e-4)")]
 
 
@@ -246,9 +247,9 @@ def create_app(allowed_hosts: Iterable[str] = guard.LOCAL_HOSTS) -> FastAPI:
 
     bad: dict[int | str, dict[str, Any]] = {422: {"model": models.ErrorAnswer, "description": "a bad parameter, named"}}
 
-    @app.get("/api/config", response_model=models.ConfigAnswer)
-    async def config() -> Response:
-        return JSONResponse(views.config_view())
+    @app.get("/api/config", response_model=models.ConfigAnswer, responses=bad)
+    async def config(lang: Lang = None) -> Response:
+        return light(views.config_view, {"lang": lang})
 
     @app.get("/api/period", response_model=models.PeriodAnswer, responses=bad)
     async def period(length: Length = None, amplitude: Amplitude = None, unit: Unit = None,
@@ -259,22 +260,23 @@ def create_app(allowed_hosts: Iterable[str] = guard.LOCAL_HOSTS) -> FastAPI:
     @app.get("/api/simulate", response_model=models.SimulateAnswer, responses=bad)
     async def simulate(request: Request, length: Length = None, amplitude: Amplitude = None, unit: Unit = None, g: Gravity = None,
                        step: Step = None, t_max: TMax = None, method: MethodName = None,
-                       points: Points = None, omega0: Omega0 = None) -> Response:
+                       points: Points = None, omega0: Omega0 = None, lang: Lang = None) -> Response:
         return await heavy(request, views.simulate_view, {"length": length, "amplitude": amplitude, "unit": unit, "g": g,
                                                "step": step, "t_max": t_max, "method": method, "points": points,
-                                               "omega0": omega0})
+                                               "omega0": omega0, "lang": lang})
 
     @app.get("/api/convergence", response_model=models.ConvergenceAnswer, responses=bad)
     async def convergence(request: Request, length: Length = None, amplitude: Amplitude = None, unit: Unit = None, g: Gravity = None,
-                          method: MethodName = None, steps: Steps = None) -> Response:
+                          method: MethodName = None, steps: Steps = None, lang: Lang = None) -> Response:
         return await heavy(request, views.convergence_view, {"length": length, "amplitude": amplitude, "unit": unit, "g": g,
-                                                  "method": method, "steps": steps})
+                                                  "method": method, "steps": steps, "lang": lang})
 
     @app.get("/api/motion", response_model=models.MotionAnswer, responses=bad)
     async def motion(length: Length = None, amplitude: Amplitude = None, unit: Unit = None, g: Gravity = None,
-                     t_max: TMax = None) -> Response:
+                     t_max: TMax = None, lang: Lang = None) -> Response:
         # At most 8000 Jacobi evaluations: milliseconds, on the event loop.
-        return light(views.motion_view, {"length": length, "amplitude": amplitude, "unit": unit, "g": g, "t_max": t_max})
+        return light(views.motion_view, {"length": length, "amplitude": amplitude, "unit": unit, "g": g, "t_max": t_max,
+                                         "lang": lang})
 
     @app.get("/api/period_curve", response_model=models.PeriodCurveAnswer)
     async def period_curve() -> Response:

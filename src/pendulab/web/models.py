@@ -46,6 +46,8 @@ class ConfigAnswer(_Model):
     limits: Limits
     defaults: dict[str, str] = Field(description="the default view's query values, as text")
     problem5: Problem5
+    lang: str = Field(description="the language of words: en or pt")
+    words: dict[str, str] = Field(description="the catalogue's web. entries of lang, without the prefix")
 
 
 class PeriodAnswer(_Model):

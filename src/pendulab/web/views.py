@@ -60,7 +60,7 @@ def period_view(length: float, amplitude: float, g: float, per: Periods | None =
 
 
 def estimate_view(length: float, amplitude: float, step: float, g: float, method: str,
-                  period: float | None = None) -> dict[str, Any]:
+                  period: float | None = None, lang: str = "en") -> dict[str, Any]:
     """The period estimated from a streamed simulation, or why there is none.
 
     Returns ``{"estimate": {...}, "status": "found", "reason": None}`` with the bracket
@@ -201,7 +201,7 @@ def simulate_view(params: Mapping[str, str]) -> dict[str, Any]:
     launched = _launch_view(p, params)
     per = periods(p["length"], p["amplitude"], p["g"])  # the one AGM period of the request, passed down
     if launched is None:
-        est = estimate_view(p["length"], p["amplitude"], p["step"], p["g"], p["method"], per.period)
+        est = estimate_view(p["length"], p["amplitude"], p["step"], p["g"], p["method"], per.period, lang)
     else:  # the coursework's estimate times a release at rest; a launch has its period from pendulab.numerics.launched
         est = {"estimate": None, "status": NOT_RUN, "reason": (
             f"the period is estimated from a release at rest; this pendulum is launched with theta'(0) = {p['omega0']:g} "
@@ -348,6 +348,7 @@ def convergence_view(params: Mapping[str, str]) -> dict[str, Any]:
     from ..numerics.crossing import default_t_max
 
     p = parameters.pendulum(params)
+    lang = words.language(params)
     method = parameters.method(params)
     steps = sorted(set(parameters.step_list(params)), reverse=True)
     periods = period_view(p["length"], p["amplitude"], p["g"])
@@ -364,7 +365,7 @@ def convergence_view(params: Mapping[str, str]) -> dict[str, Any]:
     limits.check_sweep([default_t_max(periods["period"], h, 0.0) for h in steps], steps, method)
     rows = []
     for h in steps:
-        est = estimate_view(p["length"], p["amplitude"], h, p["g"], method.name, periods["period"])
+        est = estimate_view(p["length"], p["amplitude"], h, p["g"], method.name, periods["period"], lang)
         rows.append({"step": h} | est)
     return {"method": method.name, "order": method.order, "period": periods, "rows": rows}
 
@@ -380,6 +381,7 @@ def motion_view(params: Mapping[str, str]) -> dict[str, Any]:
     from ..numerics.motion import exact_motion
 
     p = parameters.pendulum(params)
+    words.language(params)  # the page sends its language with every request: judged here too
     t_max = parameters.positive(params, "t_max", parameters.DEFAULTS["t_max"])
     view = period_view(p["length"], p["amplitude"], p["g"])
     frames = 16 * t_max / view["period"]
@@ -422,10 +424,12 @@ def period_curve_view() -> dict[str, Any]:
     return {"amplitude_deg": deg.tolist(), "period_ratio": period_ratio, "approximations": approx}
 
 
-def config_view() -> dict[str, Any]:
-    """``GET /api/config``: the methods the library has now, g presets, limits, defaults."""
+def config_view(params: Mapping[str, str] | None = None) -> dict[str, Any]:
+    """``GET /api/config``: the methods of the library, g presets, limits, defaults, and the
+    page's words in the language ``lang`` asks for (:func:`pendulab.web.words.catalogue`)."""
     from ..core.methods import MAX_TAYLOR_ORDER, menu
 
+    lang = words.language(params or {})
     return {
         "methods": [{"name": m.name, "order": m.order, "description": m.description} for m in menu()],
         # The family taylor:P of the registry, every order (taylor:1 is Euler's method).
@@ -435,6 +439,8 @@ def config_view() -> dict[str, Any]:
         "limits": {"max_steps": limits.MAX_WORK, "max_points": limits.MAX_POINTS, "plot_points": limits.DEFAULT_PLOT_POINTS},
         "defaults": parameters.DEFAULTS,
         "problem5": {"length": PROBLEM5.l, "amplitude": PROBLEM5.alpha},
+        "lang": lang,
+        "words": words.catalogue(lang),
     }
 
 

@@ -22,6 +22,9 @@ const TOUCH = window.matchMedia("(pointer: coarse)").matches || navigator.maxTou
 const REDUCED_MOTION = window.matchMedia("(prefers-reduced-motion: reduce)").matches;
 
 const $ = (id) => document.getElementById(id);
+const LANGS = ["en", "pt"];
+let lang = "en";                                  // the page's language: ?lang=, else the browser's
+let langGiven = false;                            // ?lang= in the URL: kept there
 let config = null;
 let state = {};
 let view = { exact: true, scale: false, errlog: false, second: false, side: 1 };
@@ -31,6 +34,41 @@ let seq = 0;                                      // drops answers to requests t
 let timer = null;
 const anim = { playing: true, t: 0, last: null, speed: 1, marks: 0, drag: null };
 const gate = { prev: null, passes: [], period: null };
+
+// ---------- words: the catalogues' web. entries (/api/config?lang=), numbers in the language's form ----------
+function pickLanguage() {
+  const q = new URLSearchParams(location.search).get("lang");
+  if (q && LANGS.includes(q.toLowerCase())) { langGiven = true; return q.toLowerCase(); }
+  // The browser's first preferred language the page has; English otherwise.
+  for (const l of navigator.languages || [navigator.language || ""]) {
+    const base = String(l).slice(0, 2).toLowerCase();
+    if (LANGS.includes(base)) return base;
+  }
+  return LANGS[0];
+}
+
+/** The catalogue's entry web.<key>, its {name} fields filled from vars; a missing key is a console error and shows the key. */
+function word(key, vars = {}) {
+  const w = config && config.words ? config.words[key] : undefined;
+  if (w === undefined) { console.error(`pendulab: no word "${key}" in the ${lang} catalogue`); return key; }
+  return w.replace(/\{(\w+)\}/g, (m, k) => (k in vars ? String(vars[k]) : m));
+}
+
+/** A number's text as written in the page's language: a decimal comma in Portuguese. */
+const local = (text) => (lang === "pt" ? String(text).replace(/(\d)\.(?=\d)/g, "$1,") : String(text));
+/** x to `digits` significant digits (all of its shortest form without), in the page's language. */
+const num = (x, digits) => (x === null || x === undefined ? "–" : local(digits ? x.toPrecision(digits) : String(x)));
+/** A whole number with the language's thousands separator. */
+const count = (n) => n.toLocaleString(lang === "pt" ? "pt-PT" : "en");
+
+/** The static text of the page: data-word (text), data-word-aria (aria-label), data-word-title, data-word-placeholder. */
+function applyWords(root = document) {
+  for (const e of root.querySelectorAll("[data-word]")) e.textContent = word(e.dataset.word);
+  for (const e of root.querySelectorAll("[data-word-aria]")) e.setAttribute("aria-label", word(e.dataset.wordAria));
+  for (const e of root.querySelectorAll("[data-word-title]")) e.title = word(e.dataset.wordTitle);
+  for (const e of root.querySelectorAll("[data-word-placeholder]")) e.placeholder = word(e.dataset.wordPlaceholder);
+  document.documentElement.lang = lang;
+}
 
 // ---------- state <-> URL <-> form ----------
 function readURL() {
@@ -64,7 +102,7 @@ function writeForm() {
   $("speed").value = String(anim.speed);
   for (const k of ["exact", "scale", "errlog", "second"]) $(k).checked = view[k];
   $("second-fields").hidden = !view.second;
-  $("play").textContent = anim.playing ? "Pause" : "Play";
+  $("play").textContent = word(anim.playing ? "page.pause" : "page.play");
   markPreset();
   for (const k of Object.keys(SLIDERS)) syncSlider(k);
 }
@@ -87,6 +125,7 @@ function pageQuery() {
   if (view.second) q.set("second", "1");
   if (view.side < 0) q.set("side", "left");
   if (!anim.playing) { q.set("paused", "1"); q.set("t", String(Number(anim.t.toPrecision(6)))); }
+  if (langGiven) q.set("lang", lang);
   return q.toString();
 }
 
@@ -99,12 +138,13 @@ function apiAmplitude() {
   return state.unit === "deg" && PLAIN_NUMBER.test(a) ? a + "deg" : a;
 }
 
-function apiQuery(which, extra = {}) {
+function apiQuery(which, extra = {}, withWords = true) {
   const method = which === "b" ? state.method2 : state.method;
   const step = which === "b" && state.step2 ? state.step2 : state.step;
   const q = new URLSearchParams({
     length: state.length, amplitude: state.amplitude, unit: state.unit, g: state.g, method, step, t_max: state.t_max, ...extra,
   });
+  if (withWords) q.set("lang", lang);  // the flags' words; the CSV has none
   if (state.omega0) q.set("omega0", state.omega0);
   return q.toString();
 }
@@ -113,7 +153,7 @@ function secondQuery() {
   // The second pendulum: its own length, amplitude (in the first one's unit) and g; empty ones are the first's.
   return new URLSearchParams({
     length: state.length2 || state.length, amplitude: state.amplitude2 || state.amplitude, unit: state.unit,
-    g: state.g2 || state.g, t_max: state.t_max,
+    g: state.g2 || state.g, t_max: state.t_max, lang,
   }).toString();
 }
 
@@ -168,10 +208,10 @@ async function update() {
   clearError();
   sims = { a: ra.body, b: rb ? rb.body : null, second: rs ? rs.body : null };
   sims.a.amplitudeQuery = amplitudeQuery;
-  $("csv").href = "/api/trajectory.csv?" + apiQuery("a", { columns: "all" });
+  $("csv").href = "/api/trajectory.csv?" + apiQuery("a", { columns: "all" }, false);
   $("csv").setAttribute("aria-disabled", "false");
   $("csv2").hidden = !sims.b;
-  if (sims.b) $("csv2").href = "/api/trajectory.csv?" + apiQuery("b", { columns: "all" });
+  if (sims.b) $("csv2").href = "/api/trajectory.csv?" + apiQuery("b", { columns: "all" }, false);
   const s = sims.a;
   const thinned = s.thinning === "none" ? "every step plotted" : `θ(t): min and max of each of ${s.columns} columns`;
   $("status").textContent = `${s.n_steps.toLocaleString("en")} steps of ${s.input.method}; ${thinned}.`;
@@ -193,6 +233,7 @@ async function update() {
   renderEstimates();
   renderRatio();
   updateConvergence(my);
+  document.body.dataset.shown = "1";  // the first render is done: what tests wait for, in any language
 }
 
 const nextFrame = () => new Promise((resolve) => requestAnimationFrame(() => resolve()));
@@ -207,7 +248,7 @@ async function updateConvergence(my) {
   const steps = [];
   for (let k = 0; k <= 12; k++) steps.push(T / Math.pow(10, 1.5 + k / 4));
   const ask = (method, h) => getJSON("/api/convergence?" + new URLSearchParams({
-    length: state.length, amplitude: state.amplitude, unit: state.unit, g: state.g, method,
+    length: state.length, amplitude: state.amplitude, unit: state.unit, g: state.g, method, lang,
     steps: steps.concat([h]).map((x) => x.toPrecision(6)).join(","),
   }).toString());
   let ra, rb = null;
@@ -252,6 +293,7 @@ function showError(err) {
   $("status").textContent = "Results shown are from the last valid input.";
   $("main").classList.add("stale");
   $("csv").setAttribute("aria-disabled", "true");
+  document.body.dataset.shown = "1";
 }
 
 function clearError() {
@@ -918,7 +960,7 @@ function tick() {
 
 function setPlaying(on) {
   anim.playing = on;
-  $("play").textContent = on ? "Pause" : "Play";
+  $("play").textContent = word(on ? "page.pause" : "page.play");
   gate.prev = null;
   writeURL();
 }
@@ -1018,15 +1060,24 @@ function addMethods(select, methods, group = null) {
 }
 
 async function init() {
-  config = (await getJSON("/api/config")).body;
+  lang = pickLanguage();
+  config = (await getJSON("/api/config?lang=" + lang)).body;
+  applyWords();
+  document.title = word("page.title");
+  $("lang").value = lang;
+  $("lang").addEventListener("change", () => {
+    // The page in the other language: its words are read once, at load; the URL keeps the choice.
+    langGiven = true; lang = $("lang").value;
+    location.search = "?" + pageQuery();
+  });
   for (const sel of [$("method"), $("method2")]) {
     addMethods(sel, config.methods);
     addMethods(sel, config.family || [], "Taylor method of order P");
   }
   for (const [name, g] of Object.entries(config.g_presets)) {
     const b = document.createElement("button");
-    b.type = "button"; b.dataset.g = g; b.textContent = name[0].toUpperCase() + name.slice(1);
-    b.title = `g = ${g} m/s²`;
+    b.type = "button"; b.dataset.g = g; b.textContent = word(`page.preset.${name}`);
+    b.title = `g = ${local(g)} m/s²`;
     b.addEventListener("click", () => { $("g").value = String(g); syncSlider("g"); schedule(0); });
     $("g-presets").append(b);
   }
@@ -1061,9 +1112,9 @@ async function init() {
     tick();
   });
   $("copy-link").addEventListener("click", async () => {
-    try { await navigator.clipboard.writeText(location.href); $("copy-link").textContent = "Link copied"; }
-    catch (e) { window.prompt("Copy this link:", location.href); }
-    setTimeout(() => { $("copy-link").textContent = "Copy link"; }, 1500);
+    try { await navigator.clipboard.writeText(location.href); $("copy-link").textContent = word("page.link-copied"); }
+    catch (e) { window.prompt(word("page.copy-prompt"), location.href); }
+    setTimeout(() => { $("copy-link").textContent = word("page.copy-link"); }, 1500);
   });
   setupDrag();
   window.addEventListener("resize", () => { tick(); });

@@ -1,0 +1,93 @@
+"""The explorer's words: ``/api/config?lang=`` hands the page the catalogue's ``web.`` entries,
+and every key the page names (``data-word*`` in index.html, ``word("...")`` in its scripts)
+is in both catalogues with the same ``{fields}``.
+
+Reference: the catalogue files themselves, read here with ``json`` (not through
+:mod:`pendulab.web.words`).
+"""
+from __future__ import annotations
+
+import json
+import re
+import string
+from importlib import resources
+from pathlib import Path
+
+import pytest
+from fastapi.testclient import TestClient
+
+from pendulab.web import create_app
+
+STATIC = Path(__file__).resolve().parents[1] / "src" / "pendulab" / "web" / "static"
+
+
+def _catalogue(lang: str) -> dict[str, str]:
+    text = resources.files("pendulab.report").joinpath(f"{lang}.json").read_text(encoding="utf-8")
+    return {k[4:]: v for k, v in json.loads(text).items() if k.startswith("web.")}
+
+
+EN, PT = _catalogue("en"), _catalogue("pt")
+
+
+@pytest.fixture(scope="module")
+def client():
+    return TestClient(create_app(), base_url="http://localhost")
+
+
+@pytest.mark.parametrize("lang", ["en", "pt"])
+def test_config_hands_the_page_its_words(client, lang):
+    body = client.get("/api/config", params={"lang": lang}).json()
+    assert body["lang"] == lang
+    assert body["words"] == (EN if lang == "en" else PT)
+    assert body["words"]["page.period"] == {"en": "Period", "pt": "Período"}[lang]
+
+
+def test_config_without_lang_is_english(client):
+    assert client.get("/api/config").json()["lang"] == "en"
+
+
+@pytest.mark.parametrize("route", ["/api/config", "/api/simulate", "/api/motion", "/api/convergence"])
+def test_an_unknown_language_is_a_422_naming_lang(client, route):
+    r = client.get(route, params={"lang": "fr", "length": "1", "amplitude": "0.5", "step": "0.01", "t_max": "2"})
+    assert r.status_code == 422
+    err = r.json()["error"]
+    assert err["field"] == "lang" and err["value"] == "fr" and err["allowed"] == "en or pt"
+
+
+def _fields(text: str) -> set[str]:
+    return {f for _, f, _, _ in string.Formatter().parse(text) if f}
+
+
+def test_both_catalogues_hold_the_same_web_keys_and_fields():
+    assert set(EN) == set(PT)
+    assert {k: _fields(EN[k]) for k in EN} == {k: _fields(PT[k]) for k in PT}
+
+
+#: Entries written alike in both languages: symbols, names and words that are Portuguese too.
+SAME_IN_BOTH = {"page.csv", "page.amplitude"}
+
+
+def test_every_page_entry_is_translated():
+    same = {k for k in EN if k.startswith("page.") and EN[k] == PT[k]}
+    assert same == SAME_IN_BOTH
+
+
+def _page_keys() -> set[str]:
+    html = (STATIC / "index.html").read_text(encoding="utf-8")
+    keys = set(re.findall(r'data-word(?:-aria|-title|-placeholder)?="([^"]+)"', html))
+    for script in STATIC.glob("*.js"):
+        if script.name.startswith("plotly"):
+            continue
+        keys |= set(re.findall(r'\bword\("([^"$]+)"', script.read_text(encoding="utf-8")))
+    return keys
+
+
+def test_every_key_the_page_names_is_in_the_catalogues():
+    keys = _page_keys()
+    assert len(keys) > 40  # the scan finds the page's words
+    assert sorted(keys - set(EN)) == []
+
+
+def test_the_scan_finds_a_missing_key(tmp_path):
+    """The check above can fail: a key that no catalogue has is found by the same expression."""
+    assert re.findall(r'\bword\("([^"$]+)"', 'x = word("page.no-such-key");') == ["page.no-such-key"]
