@@ -16,6 +16,10 @@ window (:data:`WINDOW_FRACTION` of the run and at least a period):
 - else ``growth`` or ``decay`` (by the sign of its largest error) when the window's largest
   ``|E - E0|`` exceeds :data:`GROWTH` times that of the run's first window;
 - else ``bounded``.
+
+A damped run (``damping`` or ``drag`` of :func:`pendulab.numerics.simulation.simulate`)
+loses its energy by design and has no exact motion to compare with: its energy and phase
+are not judged, and one note, ``damped``, says so.
 """
 from __future__ import annotations
 
@@ -45,7 +49,7 @@ PHASE_WARN = 0.1
 
 EnergyKind = Literal["growth", "decay", "bounded"]
 Kind = Literal["blow-up", "over-the-top", "energy-growth", "energy-decay", "energy-drift",
-               "energy-oscillation", "energy-oscillation-large", "phase"]
+               "energy-oscillation", "energy-oscillation-large", "phase", "damped"]
 Severity = Literal["wrong", "warn", "note"]
 
 
@@ -61,7 +65,8 @@ class Finding(Result):
         (numerical damping), ``energy-drift`` (a run too short to tell which),
         ``energy-oscillation`` (bounded, at most :data:`BOUNDED_LARGE`),
         ``energy-oscillation-large`` (bounded, above it), ``phase`` (beyond
-        :data:`PHASE_WARN` of the exact motion from ``t`` on).
+        :data:`PHASE_WARN` of the exact motion from ``t`` on), ``damped`` (a damped run:
+        energy and phase not judged).
     severity : str
         ``wrong`` (not the pendulum's motion), ``warn`` (out of step with the exact motion),
         ``note`` (a small bounded energy error).
@@ -87,14 +92,14 @@ class Diagnosis(Result):
     left_oscillation_t, nonfinite_t : float or None
         The first time over the top (not counted for a launch that goes round) and the
         first time not a finite number.
-    energy_drift_max : float or None
+    max_energy_drift : float or None
         ``max |E - E0|`` in ``m g l`` (None where no sample is finite).
     energy_drift_relative : float or None
         The same over the swing's energy ``E0`` (None for a swing of no energy).
     energy_drift_kind : str or None
         ``growth``, ``decay`` or ``bounded`` (:func:`energy_kind`); None for a run shorter
         than two windows, or once over the top or blown up (the energy then says nothing more).
-    phase_error_max : float or None
+    max_theta_error : float or None
         ``max |theta_sim - theta_exact|`` over the error samples, rad.
     notes : tuple of Finding
         In order: blow-up, over the top, energy, phase; once over the top or blown up, the
@@ -103,10 +108,10 @@ class Diagnosis(Result):
 
     left_oscillation_t: float | None
     nonfinite_t: float | None
-    energy_drift_max: float | None
+    max_energy_drift: float | None
     energy_drift_relative: float | None
     energy_drift_kind: EnergyKind | None
-    phase_error_max: float | None
+    max_theta_error: float | None
     notes: tuple[Finding, ...]
 
     @property
@@ -142,7 +147,7 @@ def energy_kind(t: Any, drift: Any, period: float, t_end: float) -> EnergyKind |
 
 def diagnose(swing: float, energy_t: Any, energy: Any, period: float, t_end: float,
              left_t: float | None = None, nonfinite_t: float | None = None,
-             error_t: Any = None, error: Any = None) -> Diagnosis:
+             error_t: Any = None, error: Any = None, damped: bool = False) -> Diagnosis:
     """The findings of a simulated run (its notes).
 
     Parameters
@@ -161,6 +166,9 @@ def diagnose(swing: float, energy_t: Any, energy: Any, period: float, t_end: flo
         the first time not finite.
     error_t, error : array_like or None
         Times and ``theta_sim - theta_exact`` (rad).
+    damped : bool
+        A damped run: its energy falls by design, the exact motion is the undamped one; the
+        energy's and the phase's findings give way to one note ``damped``.
     """
     e_t = np.asarray(energy_t, dtype=float)
     e = np.asarray(energy, dtype=float)
@@ -168,13 +176,16 @@ def diagnose(swing: float, energy_t: Any, energy: Any, period: float, t_end: flo
     drift = float(np.max(np.abs(e[ok]))) if ok.any() else None
     rel = drift / swing if drift is not None and swing > 0 else None
     gone = left_t is not None or nonfinite_t is not None  # the energy then says nothing more
-    kind = energy_kind(e_t, e / swing, period, t_end) if rel is not None and not gone else None
+    judged = not gone and not damped
+    kind = energy_kind(e_t, e / swing, period, t_end) if rel is not None and judged else None
     notes: list[Finding] = []
     if nonfinite_t is not None:
         notes.append(Finding("blow-up", "wrong", nonfinite_t, None))
     if left_t is not None:
         notes.append(Finding("over-the-top", "wrong", left_t, None))
-    if rel is not None and rel > ENERGY_WARN and not gone:
+    if damped and not gone:
+        notes.append(Finding("damped", "note", None, None))
+    if rel is not None and rel > ENERGY_WARN and judged:
         if kind == "bounded":
             large = rel > BOUNDED_LARGE
             notes.append(Finding("energy-oscillation-large" if large else "energy-oscillation",
@@ -187,10 +198,10 @@ def diagnose(swing: float, energy_t: Any, energy: Any, period: float, t_end: flo
         fine = np.isfinite(err)
         if fine.any():
             phase = float(np.max(np.abs(err[fine])))
-            if phase > PHASE_WARN and not gone:
+            if phase > PHASE_WARN and judged:
                 first = float(np.asarray(error_t, dtype=float)[int(np.argmax(fine & (np.abs(np.where(fine, err, 0.0)) > PHASE_WARN)))])
                 notes.append(Finding("phase", "warn", first, phase))
     return Diagnosis(left_oscillation_t=left_t, nonfinite_t=nonfinite_t,
-                     energy_drift_max=drift if drift is None or math.isfinite(drift) else None,
-                     energy_drift_relative=rel, energy_drift_kind=kind, phase_error_max=phase,
+                     max_energy_drift=drift if drift is None or math.isfinite(drift) else None,
+                     energy_drift_relative=rel, energy_drift_kind=kind, max_theta_error=phase,
                      notes=tuple(notes))

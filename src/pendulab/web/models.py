@@ -144,7 +144,7 @@ class Frames(_Model):
 
 class Note(_Model):
     kind: Literal["blow-up", "over-the-top", "energy-growth", "energy-decay", "energy-drift",
-                  "energy-oscillation", "energy-oscillation-large", "phase"] = Field(
+                  "energy-oscillation", "energy-oscillation-large", "phase", "damped"] = Field(
         description="a finding of pendulab.numerics.diagnosis (its thresholds in docs/explorer.md)")
     severity: Literal["wrong", "warn", "note"] = Field(
         description="wrong: not the pendulum's motion; warn: out of step with the exact motion; "
@@ -155,12 +155,12 @@ class Note(_Model):
 class Flags(_Model):
     left_oscillation_t: float | None
     nonfinite_t: float | None
-    energy_drift_max: float | None
+    max_energy_drift: float | None
     energy_drift_relative: float | None
     energy_drift_kind: Literal["growth", "decay", "bounded"] | None = Field(
         description="growth, decay (numerical damping) or a bounded error, from the data "
                     "(null: a run too short to tell, or over the top or blown up)")
-    phase_error_max: float | None = Field(description="max |theta_sim - theta_exact| over the error samples, rad")
+    max_theta_error: float | None = Field(description="max |theta_sim - theta_exact| over the error samples, rad")
     trustworthy: bool
     warnings: list[str] = Field(description="the texts of the notes of severity wrong or warn")
     notes: list[Note]

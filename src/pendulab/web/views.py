@@ -175,8 +175,8 @@ def _flags(p: Mapping[str, Any], sim: Mapping[str, Any], err_t: np.ndarray | Non
     warnings = [n["text"] for n in notes if n["severity"] != "note"]
     return {
         "left_oscillation_t": left, "nonfinite_t": bad,
-        "energy_drift_max": out["energy_drift_max"], "energy_drift_relative": out["energy_drift_relative"],
-        "energy_drift_kind": out["energy_drift_kind"], "phase_error_max": out["phase_error_max"],
+        "max_energy_drift": out["max_energy_drift"], "energy_drift_relative": out["energy_drift_relative"],
+        "energy_drift_kind": out["energy_drift_kind"], "max_theta_error": out["max_theta_error"],
         "trustworthy": out["trustworthy"], "warnings": warnings, "notes": notes,
     }
 
