@@ -124,10 +124,10 @@ def fold(z1, z2, count, i0, n, scale, e0, value, step, where, samples, s_theta, 
 
 @njit(cache=True, nogil=True)
 def piece(method, order, c, h, n, i0, i1, z, buf1, buf2, scale, e0, value, step, where, samples,
-          s_theta, s_omega):
+          s_theta, s_omega, gamma, beta):
     """Steps ``i0 + 1 .. i1`` from the state ``z`` of step ``i0`` (updated to that of ``i1``):
     :func:`pendulab.engine.kernels.drive` a buffer at a time, each folded by :func:`fold`. The
-    first piece (``i0 = 0``) folds the start state too."""
+    first piece (``i0 = 0``) folds the start state too; ``gamma, beta`` the damping (``drive``)."""
     a, b = z[0], z[1]
     if i0 == 0:
         buf1[0], buf2[0] = a, b
@@ -136,17 +136,18 @@ def piece(method, order, c, h, n, i0, i1, z, buf1, buf2, scale, e0, value, step,
     i = i0
     while i < i1:
         j = min(i1, i + size)
-        a, b, k = drive(method, order, a, b, c, h, i, j, 1, n, buf1, buf2)
+        a, b, k = drive(method, order, a, b, c, h, i, j, 1, n, buf1, buf2, gamma, beta)
         fold(buf1, buf2, k, i + 1, n, scale, e0, value, step, where, samples, s_theta, s_omega)
         i = j
     z[0], z[1] = a, b
 
 
 def run(method: int, order: int, alpha: float, omega0: float, c: float, h: float, n: int, nb: int,
-        samples: np.ndarray, size: int) -> Record:
+        samples: np.ndarray, size: int, gamma: float = 0.0, beta: float = 0.0) -> Record:
     """Steps ``0 .. n`` (``n >= 1``) of a run from ``(alpha, omega0)`` (``c = -g/l``) of the method
     of code ``method`` (the steps of :func:`pendulab.numerics.simulation.simulate`), in pieces of ``size`` steps
-    (:func:`pendulab.core.interrupt.run_pieces`: a set event or a signal stops it between two)."""
+    (:func:`pendulab.core.interrupt.run_pieces`: a set event or a signal stops it between two),
+    damped by ``gamma, beta`` (:func:`pendulab.engine.kernels.drive`)."""
     rec = Record.empty(n, nb, samples)
     scale = 1.0 / (-2.0 * c) if c != 0.0 else 0.0
     e0 = math.cos(alpha) - omega0 * omega0 * scale
@@ -155,7 +156,7 @@ def run(method: int, order: int, alpha: float, omega0: float, c: float, h: float
 
     def one(i0: int, i1: int) -> bool:
         piece(method, order, c, h, n, i0, i1, z, buf1, buf2, scale, e0, rec.value, rec.step, rec.where,
-              samples, rec.s_theta, rec.s_omega)
+              samples, rec.s_theta, rec.s_omega, float(gamma), float(beta))
         return False
 
     run_pieces(pieces(n, size), one)

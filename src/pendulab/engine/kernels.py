@@ -116,19 +116,132 @@ def step(method, order, z1, z2, h, c):
     return taylor_step(order, z1, z2, h, c)
 
 
+# ---------- the damped pendulum theta'' = c sin(theta) - gamma theta' - beta theta'|theta'| ----------
+# gamma (1/s) a linear damping, beta (1/rad) a quadratic one (air drag); both 0 is (2).
+
+
+@njit(cache=True, nogil=True, inline="always")
+def damped_force(z1, z2, c, gamma, beta):
+    """``theta''`` of the damped pendulum: (2) less ``gamma theta' + beta theta'|theta'|``."""
+    return c * sin(z1) - gamma * z2 - beta * z2 * abs(z2)
+
+
+@njit(cache=True, nogil=True, inline="always")
+def taylor2_damped_step(z1, z2, h, c, gamma, beta):
+    """The second-order Taylor step of (3) for the damped pendulum: ``z + h z' + h^2/2 z''``.
+
+    ``z2'' = f' = c cos(z1) z2 - (gamma + 2 beta |z2|) f`` (the derivative of :func:`damped_force`
+    along the motion); ``gamma = beta = 0`` gives (3).
+    """
+    f = damped_force(z1, z2, c, gamma, beta)
+    ft = c * cos(z1) * z2 - (gamma + 2.0 * beta * abs(z2)) * f
+    return z1 + h * z2 + 0.5 * h * h * f, z2 + h * f + 0.5 * h * h * ft
+
+
+@njit(cache=True, nogil=True, inline="always")
+def rk4_damped_step(z1, z2, h, c, gamma, beta):
+    """Classical Runge-Kutta (Hairer, Norsett, Wanner, *Solving ODEs I*, II.1, table 1.2) for the damped pendulum."""
+    k1 = z2
+    l1 = damped_force(z1, z2, c, gamma, beta)
+    k2 = z2 + 0.5 * h * l1
+    l2 = damped_force(z1 + 0.5 * h * k1, k2, c, gamma, beta)
+    k3 = z2 + 0.5 * h * l2
+    l3 = damped_force(z1 + 0.5 * h * k2, k3, c, gamma, beta)
+    k4 = z2 + h * l3
+    l4 = damped_force(z1 + h * k3, k4, c, gamma, beta)
+    return z1 + h / 6 * (k1 + 2 * k2 + 2 * k3 + k4), z2 + h / 6 * (l1 + 2 * l2 + 2 * l3 + l4)
+
+
+@njit(cache=True, nogil=True, inline="always")
+def damping_flow(v, t, gamma, beta):
+    """``theta'`` after a time ``t`` of ``theta'' = -gamma theta' - beta theta'|theta'|`` alone, exactly.
+
+    For ``u = 1/theta'``, ``u' = gamma u + beta`` (a Bernoulli equation):
+    ``v(t) = v e^(-gamma t) / (1 + beta |v| (1 - e^(-gamma t))/gamma)``, ``t`` for the last factor at ``gamma = 0``.
+    """
+    q = t if gamma == 0.0 else -math.expm1(-gamma * t) / gamma
+    return v * math.exp(-gamma * t) / (1.0 + beta * abs(v) * q)
+
+
+@njit(cache=True, nogil=True, inline="always")
+def verlet_damped_step(z1, z2, h, c, gamma, beta):
+    """Stormer-Verlet between two half steps of the exact damping (Strang splitting, order 2):
+    the conformal symplectic splitting of McLachlan & Perlmutter, "Conformal Hamiltonian
+    systems", J. Geom. Phys. 39 (2001) 276-300."""
+    a, b = verlet_step(z1, damping_flow(z2, 0.5 * h, gamma, beta), h, c)
+    return a, damping_flow(b, 0.5 * h, gamma, beta)
+
+
+@njit(cache=True, nogil=True)  # not inlined, as taylor_step
+def taylor_damped_step(p, z1, z2, h, c, gamma, beta):
+    """The Taylor method of order ``p`` (:func:`taylor_step`) for the damped pendulum.
+
+    With ``v_j = (j+1) x_{j+1}`` the coefficients of ``theta'`` and ``s`` the sign of
+    ``theta'`` over the step (of ``theta''`` where ``theta' = 0``),
+    ``(k+1)(k+2) x_{k+2} = c S_k - gamma v_k - beta s sum_{j<=k} v_j v_{k-j}``
+    (the Cauchy product of ``theta' |theta'| = s theta'^2``; over a step where ``theta'``
+    changes sign the quadratic term is of order 2 in ``h`` only).
+    """
+    x = np.empty(MAX_TAYLOR_ORDER + 2)
+    S = np.empty(MAX_TAYLOR_ORDER)
+    C = np.empty(MAX_TAYLOR_ORDER)
+    x[0] = z1
+    x[1] = z2
+    S[0] = sin(z1)
+    C[0] = cos(z1)
+    sign = 1.0 if z2 > 0.0 else -1.0 if z2 < 0.0 else (1.0 if c * S[0] > 0.0 else -1.0)
+    for k in range(0, p):
+        if k > 0:
+            sk = 0.0
+            ck = 0.0
+            for j in range(1, k + 1):
+                sk += j * x[j] * C[k - j]
+                ck -= j * x[j] * S[k - j]
+            S[k] = sk / k
+            C[k] = ck / k
+        q = 0.0
+        for j in range(0, k + 1):
+            q += (j + 1) * x[j + 1] * (k - j + 1) * x[k - j + 1]
+        x[k + 2] = (c * S[k] - gamma * (k + 1) * x[k + 1] - beta * sign * q) / ((k + 1) * (k + 2))
+    z1_next = x[p]  # Horner's rule
+    for k in range(p - 1, -1, -1):
+        z1_next = z1_next * h + x[k]
+    z2_next = (p + 1) * x[p + 1]
+    for k in range(p, 0, -1):
+        z2_next = z2_next * h + k * x[k]
+    return z1_next, z2_next
+
+
+@njit(cache=True, nogil=True, inline="always")
+def damped_step(method, order, z1, z2, h, c, gamma, beta):
+    """:func:`step` for the damped pendulum (one branch per integrator, as there)."""
+    if method == TAYLOR2:
+        return taylor2_damped_step(z1, z2, h, c, gamma, beta)
+    if method == RK4:
+        return rk4_damped_step(z1, z2, h, c, gamma, beta)
+    if method == VERLET:
+        return verlet_damped_step(z1, z2, h, c, gamma, beta)
+    return taylor_damped_step(order, z1, z2, h, c, gamma, beta)
+
+
 @njit(cache=True, nogil=True)
-def drive(method, order, a, b, c, h, i0, i1, stride, n, z1, z2):
+def drive(method, order, a, b, c, h, i0, i1, stride, n, z1, z2, gamma=0.0, beta=0.0):
     """Steps ``i0 + 1 .. i1`` of a run of ``n`` steps, from the state ``(a, b)`` of step ``i0``:
     the one loop of a trajectory, with "what to keep" as its parameters.
 
     Keeps the state of every step that is a multiple of ``stride``, and of step ``n``, in
     ``z1[k], z2[k]`` for ``k = 0, 1, ...``. Returns ``(a, b, k)``: the state of step ``i1`` and
-    how many states were kept. ``i1 <= n``.
+    how many states were kept. ``i1 <= n``. ``gamma, beta``: the damping (:func:`damped_step`);
+    without it the step is :func:`step`'s, the same points bit for bit.
     """
     k = 0
     keep = (i0 // stride + 1) * stride  # the next multiple of stride: no division per step
+    damped = gamma != 0.0 or beta != 0.0
     for i in range(i0 + 1, i1 + 1):
-        a, b = step(method, order, a, b, h, c)
+        if damped:
+            a, b = damped_step(method, order, a, b, h, c, gamma, beta)
+        else:
+            a, b = step(method, order, a, b, h, c)
         if i == keep or i == n:  # noqa: SIM109 (two compares in the compiled loop, no tuple)
             z1[k] = a
             z2[k] = b
@@ -144,21 +257,23 @@ def piece_steps(method, order) -> int:
     return max(1, int(CHUNK_COST / cost_per_step(name)))
 
 
-def thinned(method, order, alpha, c, h, n, stride, size):
+def thinned(method, order, alpha, c, h, n, stride, size, gamma=0.0, beta=0.0):
     """The points ``Z_j`` for ``j = 0, stride, 2 stride, ...`` and ``j = n`` (``size`` of them),
-    as two new arrays, for the method of code ``method`` (a :class:`~pendulab.core.methods.Kernel`).
+    as two new arrays, for the method of code ``method`` (a :class:`~pendulab.core.methods.Kernel`),
+    damped by ``gamma, beta`` (:func:`drive`).
 
     :func:`drive` in pieces, each from the state the one before ended in: the same points,
     bit for bit, and a signal stops the run between two pieces.
     """
     z1 = np.empty(size)
     z2 = np.empty(size)
+    gamma, beta = float(gamma), float(beta)  # one compiled signature of drive
     z1[0], z2[0] = alpha, 0.0
     state = [alpha, 0.0, 1]  # the state (a, b) of the last step run, the next point to keep
 
     def run(lo, hi):
         a, b, k = state
-        a, b, kept = drive(method, order, a, b, c, h, lo, hi, stride, n, z1[k:], z2[k:])
+        a, b, kept = drive(method, order, a, b, c, h, lo, hi, stride, n, z1[k:], z2[k:], gamma, beta)
         state[:] = a, b, k + kept
         return False
 
@@ -166,9 +281,9 @@ def thinned(method, order, alpha, c, h, n, stride, size):
     return z1, z2
 
 
-def trajectory(method, order, alpha, c, h, n):
+def trajectory(method, order, alpha, c, h, n, gamma=0.0, beta=0.0):
     """The points ``Z_j``, ``j = 0..n``, as two new arrays (:func:`thinned`, every step kept)."""
-    return thinned(method, order, alpha, c, h, n, 1, n + 1)
+    return thinned(method, order, alpha, c, h, n, 1, n + 1, gamma, beta)
 
 
 #: Status codes of :func:`first_return` (:class:`pendulab.core.methods.Status`, as plain ints).

@@ -1,5 +1,10 @@
 """Simulation of the pendulum (2) by the coursework's second-order Taylor algorithm (3), (6).
 
+With ``damping`` ``gamma`` (1/s) and ``drag`` ``beta`` (1/rad) the equation is
+``theta'' = -(g/l) sin(theta) - gamma theta' - beta theta'|theta'|``: a linear damping (a
+viscous friction at the pivot) and a quadratic one (air drag on the bob), each per unit of
+``m l^2`` so that the mass does not enter (:func:`pendulab.engine.kernels.damped_step`).
+
 :func:`simulate` gives a :class:`Trajectory`: the lists ``(t_i, z1_i)`` and
 ``(z1_i, z2_i)`` of problem 3. The loop itself is :func:`pendulab.engine.kernels.trajectory`.
 """
@@ -44,6 +49,8 @@ class Trajectory(Result):
         The inputs.
     method : str
         The integrator's name.
+    damping, drag : float
+        ``gamma`` (1/s) and ``beta`` (1/rad) of the damped equation (module docstring); 0: (2).
     """
 
     t: np.ndarray
@@ -55,6 +62,8 @@ class Trajectory(Result):
     step: float
     t0: float
     method: str = "taylor2"
+    damping: float = 0.0
+    drag: float = 0.0
 
     @property
     def n_steps(self) -> int:
@@ -102,6 +111,8 @@ def simulate(
     g: float = G,
     method: str = "taylor2",
     stride: int = 1,
+    damping: float = 0.0,
+    drag: float = 0.0,
 ) -> Trajectory:
     """Simulate ``theta'' = c sin(theta)``, ``c = -g/l`` (2), from rest at ``alpha``.
 
@@ -124,6 +135,9 @@ def simulate(
     stride : int
         Keep every ``stride``-th point (and the last): the steps are all taken, only
         the storage is thinned, e.g. for plotting a run with a small step.
+    damping, drag : float
+        ``gamma >= 0`` (1/s) and ``beta >= 0`` (1/rad): the damped equation of the module's
+        docstring (0 and 0: the pendulum (2), the same points bit for bit).
 
     Returns
     -------
@@ -135,6 +149,8 @@ def simulate(
     t0, t_max, step = v.time_span(t0, t_max, step)
     code, order = method_code(method)
     stride = v.integer("stride", stride, 1)
+    damping = v.non_negative("damping", damping)
+    drag = v.non_negative("drag", drag)
     # Work and memory by arithmetic, before anything is allocated.
     limit = v.steps_for(method, MAX_STEPS)  # weighed by the method's cost
     n = v.steps_within("step", t0, t_max, step, limit, v.steps_of(method))
@@ -146,8 +162,8 @@ def simulate(
     from ..engine.kernels import thinned, trajectory
 
     if stride == 1:
-        z1, z2 = trajectory(code, order, alpha, -g / length, step, n)
+        z1, z2 = trajectory(code, order, alpha, -g / length, step, n, damping, drag)
     else:
-        z1, z2 = thinned(code, order, alpha, -g / length, step, n, stride, len(index))
+        z1, z2 = thinned(code, order, alpha, -g / length, step, n, stride, len(index), damping, drag)
     t = t0 + step * index
-    return Trajectory(t, z1, z2, length, alpha, g, step, t0, method)
+    return Trajectory(t, z1, z2, length, alpha, g, step, t0, method, damping, drag)
