@@ -15,7 +15,7 @@ Each ``*_search(budget, seed)`` returns a dict: ``claim`` (the bound in words), 
 runs them all and writes the table of ``docs/accuracy.md``; ``tests/test_bounds_adversarial.py``
 runs them with small budgets.
 
-Run one: ``.venv/bin/python benchmarks/adversarial.py [motion|t_hat|digits|dense] [budget]``.
+Run one: ``.venv/bin/python benchmarks/adversarial.py [motion|launched|t_hat|digits|dense|...] [budget]``.
 """
 from __future__ import annotations
 
@@ -137,6 +137,108 @@ def motion_search(budget: int = 400, seed: int = 1) -> dict:
     return {"claim": "exact_motion within exact_motion_error_bound (theta and theta')",
             "worst": ratio, "unit": "of the bound", "where": "l, g, alpha, t = " + ", ".join(map(repr, where)),
             "evaluations": n}
+
+
+# ---------------------------------------------------------------------------- launched motion
+def launched_reference(length: float, alpha: float, omega0: float, t: float, g: float = G,
+                       dps: int = 50) -> tuple[float, float]:
+    """``theta, theta'`` of the launch from mpmath: ``m' = cos^2(alpha/2) - omega0^2/(4 w^2)`` at
+    ``dps`` digits beyond those it loses to cancellation; libration by ``mpmath.ellipfun`` of
+    ``m = 1 - m'`` at ``u = w t + F(phi0 | m)`` reduced modulo ``4K`` (DLMF 22.19.2); circulation by
+    ``am(u | 1/k^2)`` as ``2K j + atan2(sn, cn)`` of ``u`` reduced modulo ``2K`` (DLMF 22.19.3, 22.16.1)."""
+    with mpmath.workdps(40):
+        w = mpmath.sqrt(mpmath.mpf(g) / length)
+        r, c = mpmath.mpf(omega0) / (2 * w), mpmath.cos(mpmath.mpf(alpha) / 2)
+        mp = c * c - r * r
+        lost = 40 if mp == 0 else max(0, int(-mpmath.log10(abs(mp) / (c * c + r * r))))
+    with mpmath.workdps(dps + lost + int(math.log10(2 + abs(t)))):
+        mpf = mpmath.mpf
+        w = mpmath.sqrt(mpf(g) / mpf(length))
+        r, al, t = mpf(omega0) / (2 * w), mpf(alpha), mpf(t)
+        mp = mpmath.cos(al / 2) ** 2 - r * r
+        if mp > 0:
+            turns = mpmath.floor((al + mpmath.pi) / (2 * mpmath.pi))
+            a = al - 2 * mpmath.pi * turns
+            m = 1 - mp
+            k, big_k = mpmath.sqrt(m), mpmath.ellipk(m)
+            u = w * t + mpmath.ellipf(mpmath.atan2(mpmath.sin(a / 2), r), m)
+            u -= 4 * big_k * mpmath.floor((u + 2 * big_k) / (4 * big_k))
+            sn, cn, dn = (mpmath.ellipfun(f, u, m=m) for f in ("sn", "cn", "dn"))
+            return float(2 * mpmath.pi * turns + 2 * mpmath.atan2(k * sn, dn)), float(2 * k * w * cn)
+        k = mpmath.sqrt(1 - mp)
+        m, s = 1 / (k * k), 1 if omega0 > 0 else -1
+        big_k = mpmath.ellipk(m)
+        u = s * k * w * t + mpmath.ellipf(al / 2, m)
+        j = mpmath.floor((u + big_k) / (2 * big_k))
+        ur = u - 2 * big_k * j
+        sn, cn, dn = (mpmath.ellipfun(f, ur, m=m) for f in ("sn", "cn", "dn"))
+        return float(2 * mpmath.pi * j + 2 * mpmath.atan2(sn, cn)), float(2 * s * k * w * dn)
+
+
+def launched_ratio(x: tuple[float, float, float, float, float]) -> float:
+    """The larger of ``|theta error| / bound`` and ``|theta' error| / bound'`` at ``x = (l, g, alpha, omega0, t)``."""
+    from pendulab.numerics.launched import launched_motion, launched_motion_error_bound
+
+    length, g, alpha, omega0, t = x
+    theta, omega = launched_motion(length, alpha, omega0, [t], g)
+    bt, bo = launched_motion_error_bound(length, alpha, omega0, [t], g)
+    ref_theta, ref_omega = launched_reference(length, alpha, omega0, t, g)
+    return max(abs(theta[0] - ref_theta) / bt[0], abs(omega[0] - ref_omega) / bo[0])
+
+
+def separatrix_launch(length: float, alpha: float, g: float, delta: float, sign: float) -> float:
+    """The double ``omega0`` nearest to the launch from ``alpha`` with ``k^2 = 1 - delta``
+    (``k = 1 - delta/2``: above the separatrix for ``delta < 0``), ``omega0 = 2 w sqrt(cos^2(alpha/2) - delta)``;
+    above it where ``cos^2(alpha/2) <= delta``."""
+    with mpmath.workdps(60):
+        w = mpmath.sqrt(mpmath.mpf(g) / mpmath.mpf(length))
+        c2 = mpmath.cos(mpmath.mpf(alpha) / 2) ** 2
+        return sign * float(2 * w * mpmath.sqrt(c2 - delta if c2 > delta else c2 + abs(delta)))
+
+
+def launched_starts(rng: random.Random, n: int) -> list[tuple[float, float, float, float, float]]:
+    """Launches with ``k`` within 1e-15 .. 1e-3 of 1 from both sides, releases at rest from within
+    1e-1 .. 0 of pi (down to the last doubles below it), any launch; times at zero crossings and
+    turning points after up to 10^4 periods, forwards and backwards; lengths and g over decades."""
+    from pendulab.numerics.launched import launch
+
+    near_pi = [math.pi - 10.0**-e for e in range(1, 16)] + [math.nextafter(math.pi, 0), math.pi]
+    starts = [(0.537, G, 2.731, 1.7423259334447145, 6.952431466495199)]  # issue 32: k = 1 - 1e-12 at P/2
+    for i in range(n):
+        length, g = 10 ** rng.uniform(-2, 2), rng.choice([G, 10 ** rng.uniform(-1, 2)])
+        kind = i % 3
+        if kind == 0:  # near the separatrix, either side
+            alpha = rng.choice([rng.uniform(0, math.pi), math.pi - 10 ** rng.uniform(-8, 0), 0.0])
+            delta = rng.choice((-1, 1)) * 10 ** rng.uniform(-15, -3)
+            omega0 = separatrix_launch(length, alpha, g, delta, rng.choice((-1.0, 1.0)))
+        elif kind == 1:  # at rest near pi
+            alpha, omega0 = rng.choice(near_pi), 0.0
+        else:
+            alpha = rng.uniform(-10, 10)
+            omega0 = rng.choice((-1, 1)) * 10 ** rng.uniform(-2, 1.5) * math.sqrt(g / length)
+        period = launch(length, alpha, omega0, g).period
+        if not math.isfinite(period):
+            period = 40 / math.sqrt(g / length)
+        cycles = rng.choice([0, rng.randrange(1, 10), 10 ** rng.uniform(1, 4)])
+        phase = rng.choice([0.25, 0.75, 0.0, 0.5, rng.random()])
+        sign = -1 if rng.random() < 0.2 else 1
+        starts.append((length, g, alpha, omega0, sign * (math.floor(cycles) + phase) * period))
+    return starts
+
+
+def launched_perturb(x, rng: random.Random):
+    x = list(x)
+    i = rng.randrange(5)
+    x[i] = nudge(x[i], rng, 1e-300) if i < 2 else nudge(x[i], rng)
+    return tuple(x)
+
+
+def launched_search(budget: int = 400, seed: int = 1) -> dict:
+    rng = random.Random(seed)
+    ratio, where, n = climb(launched_ratio, launched_starts(rng, budget // 2), launched_perturb, budget // 2, rng)
+    return {"claim": "launched_motion within launched_motion_error_bound (theta and theta')",
+            "worst": ratio, "unit": "of the bound",
+            "where": "l, g, alpha, omega0, t = " + ", ".join(map(repr, where)), "evaluations": n}
 
 
 # ---------------------------------------------------------------------------- T^ (7 iterations)
@@ -580,7 +682,7 @@ def quarter_period_search(budget: int = 2000, seed: int = 1) -> dict:
             "where": f"alpha = {where[0]!r}", "evaluations": n}
 
 
-SEARCHES = {"motion": motion_search, "t_hat": t_hat_search, "digits": digits_search, "dense": dense_search,
+SEARCHES = {"motion": motion_search, "launched": launched_search, "t_hat": t_hat_search, "digits": digits_search, "dense": dense_search,
             "quadrature": quadrature_search, "agm": agm_search, "sincos": sincos_search, "sweep": sweep_search,
             "eigenvalues": eigenvalue_search, "quarter_period": quarter_period_search}
 

@@ -66,7 +66,7 @@ _PI_HI, _PI_LO = math.pi, 1.2246467991473532e-16
 _SPLITTER = 2.0**27 + 1
 
 
-def _two_prod(a: Any, b: Any) -> tuple[Any, Any]:
+def two_prod(a: Any, b: Any) -> tuple[Any, Any]:
     """``p + e = a b`` exactly, ``p = fl(a b)`` (Dekker's TwoProduct, Veltkamp splitting).
 
     Dekker, Numer. Math. 18 (1971) 224-242; exact while ``|a|, |b| < 2^995`` and ``a b``
@@ -83,7 +83,7 @@ def _two_prod(a: Any, b: Any) -> tuple[Any, Any]:
     return p, ((ah * bh - p) + ah * bl + al * bh) + al * bl
 
 
-def _two_sum(a: Any, b: Any) -> tuple[Any, Any]:
+def two_sum(a: Any, b: Any) -> tuple[Any, Any]:
     """``s + e = a + b`` exactly, ``s = fl(a + b)`` (Knuth's TwoSum)."""
     s = a + b
     bb = s - a
@@ -125,11 +125,11 @@ def _phase(t: np.ndarray, length: float, alpha: float, g: float) -> tuple[np.nda
     rh, rl, exact = _frequency(length, alpha, g)
     shape, t = np.shape(t), np.ravel(t).astype(float)
     with np.errstate(over="ignore", invalid="ignore"):
-        qh, ql = _two_prod(t, rh)
+        qh, ql = two_prod(t, rh)
         ql = ql + t * rl
         n = np.floor(qh)
-        fh, fl = _two_sum(qh, -n)  # q - n exactly, then the low parts
-        fh, fl = _two_sum(fh, fl + ql)  # renormalised: fh has lost the integer's bits
+        fh, fl = two_sum(qh, -n)  # q - n exactly, then the low parts
+        fh, fl = two_sum(fh, fl + ql)  # renormalised: fh has lost the integer's bits
     far = ~(np.abs(qh) < 2.0**60) | ~np.isfinite(fl)
     for i in np.flatnonzero(far):
         q = Fraction(float(t[i])) * exact
@@ -138,8 +138,8 @@ def _phase(t: np.ndarray, length: float, alpha: float, g: float) -> tuple[np.nda
         fl[i] = float(f - Fraction(fh[i]))
     # v = 1 - 4f in [-3, 1]; add 4 where v < -2 (f > 3/4): |u| <= 2K, the shorter argument.
     shift = np.where(fh + fl > 0.75, 5.0, 1.0)
-    vh, e = _two_sum(shift, -4.0 * fh)
-    vh, vl = _two_sum(vh, e - 4.0 * fl)
+    vh, e = two_sum(shift, -4.0 * fh)
+    vh, vl = two_sum(vh, e - 4.0 * fl)
     return vh.reshape(shape), vl.reshape(shape)
 
 
@@ -168,11 +168,11 @@ def jacobi_agm(u: np.ndarray, k: float, kp: float,
     # K |v| ulps of phi_0 (40 eps at alpha = pi - 1e-8); kept exact, phi_0 errs by the few
     # roundings of the arcsines.
     if phase is None:
-        ph, pl = _two_prod(2.0**n * a[n], np.asarray(u, dtype=float))
+        ph, pl = two_prod(2.0**n * a[n], np.asarray(u, dtype=float))
     else:
         vh, vl = phase  # pi v: pi as a double-double, TwoProduct
-        p, e = _two_prod(_PI_HI, vh)
-        ph, pl = _two_sum(2.0 ** (n - 1) * p, 2.0 ** (n - 1) * (e + (_PI_HI * vl + _PI_LO * vh)))
+        p, e = two_prod(_PI_HI, vh)
+        ph, pl = two_sum(2.0 ** (n - 1) * p, 2.0 ** (n - 1) * (e + (_PI_HI * vl + _PI_LO * vh)))
     for i in range(n, 0, -1):
         # arcsin(x), x = c_i/a_i sin(phi), as atan2(x, sqrt(1 - x^2)) with
         # 1 - |x| = (b_{i-1} + c_i cos^2(phi)/(1 + |sin(phi)|))/a_i (a_i - c_i = b_{i-1}):
@@ -180,8 +180,8 @@ def jacobi_agm(u: np.ndarray, k: float, kp: float,
         s, co = _sin_cos(ph, pl)
         x = c[i] / a[i] * s
         one_minus = (b[i - 1] + c[i] * co * co / (1 + np.abs(s))) / a[i]
-        hi, lo = _two_sum(ph, np.arctan2(x, np.sqrt(one_minus * (1 + np.abs(x)))))
-        ph, pl = _two_sum(0.5 * hi, 0.5 * (lo + pl))  # halving is exact
+        hi, lo = two_sum(ph, np.arctan2(x, np.sqrt(one_minus * (1 + np.abs(x)))))
+        ph, pl = two_sum(0.5 * hi, 0.5 * (lo + pl))  # halving is exact
     sn, cn = _sin_cos(ph, pl)
     return sn, cn, np.hypot(kp, k * cn)
 
