@@ -181,6 +181,10 @@ Omega0 = Annotated[str | None, Query(description="Initial angular velocity theta
 Columns = Annotated[str | None, Query(description="CSV columns: state (t, theta, omega; default) or all "
                                              "(also theta_exact, omega_exact, the global error, the energy error)")]
 Lang = Annotated[str | None, Query(description="The language of the words: en (default) or pt")]
+Damping = Annotated[str | None, Query(description="gamma >= 0, 1/s (default 0): the damping term gamma theta' of "
+                                             "theta'' = -(g/l) sin(theta) - gamma theta' - beta theta'|theta'|")]
+Drag = Annotated[str | None, Query(description="beta >= 0, 1/rad (default 0): the drag term beta theta'|theta'|")]
+Mass = Annotated[str | None, Query(description="The bob's mass m > 0, kg (default 1): the energies in J, not the motion")]
 Steps = Annotated[str | None, Query(description="Steps h, comma-separated, 1 to 40 (default 13 steps from 0.1 to 1e-4)")]
 
 
@@ -260,10 +264,12 @@ def create_app(allowed_hosts: Iterable[str] = guard.LOCAL_HOSTS) -> FastAPI:
     @app.get("/api/simulate", response_model=models.SimulateAnswer, responses=bad)
     async def simulate(request: Request, length: Length = None, amplitude: Amplitude = None, unit: Unit = None, g: Gravity = None,
                        step: Step = None, t_max: TMax = None, method: MethodName = None,
-                       points: Points = None, omega0: Omega0 = None, lang: Lang = None) -> Response:
+                       points: Points = None, omega0: Omega0 = None, lang: Lang = None,
+                       damping: Damping = None, drag: Drag = None, mass: Mass = None) -> Response:
         return await heavy(request, views.simulate_view, {"length": length, "amplitude": amplitude, "unit": unit, "g": g,
                                                "step": step, "t_max": t_max, "method": method, "points": points,
-                                               "omega0": omega0, "lang": lang})
+                                               "omega0": omega0, "lang": lang, "damping": damping, "drag": drag,
+                                               "mass": mass})
 
     @app.get("/api/convergence", response_model=models.ConvergenceAnswer, responses=bad)
     async def convergence(request: Request, length: Length = None, amplitude: Amplitude = None, unit: Unit = None, g: Gravity = None,
@@ -289,9 +295,11 @@ def create_app(allowed_hosts: Iterable[str] = guard.LOCAL_HOSTS) -> FastAPI:
     @app.get("/api/trajectory.csv", response_class=StreamingResponse, responses=csv | bad)
     async def trajectory_csv(length: Length = None, amplitude: Amplitude = None, unit: Unit = None,
                              g: Gravity = None, step: Step = None, t_max: TMax = None, method: MethodName = None,
-                             points: Points = None, columns: Columns = None, omega0: Omega0 = None) -> Response:
+                             points: Points = None, columns: Columns = None, omega0: Omega0 = None,
+                             damping: Damping = None, drag: Drag = None, mass: Mass = None) -> Response:
         params = {"length": length, "amplitude": amplitude, "unit": unit, "g": g, "step": step, "t_max": t_max,
-                  "method": method, "points": points, "columns": columns, "omega0": omega0}
+                  "method": method, "points": points, "columns": columns, "omega0": omega0, "damping": damping,
+                  "drag": drag, "mass": mass}
         try:
             blocks, name = views.trajectory_csv(_given(params))
         except InputError as exc:

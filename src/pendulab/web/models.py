@@ -99,6 +99,10 @@ class Input(_Model):
     g: float
     method: str
     amplitude_deg: float
+    damping: float = Field(description="gamma of theta'' = -(g/l) sin(theta) - gamma theta' - beta theta'|theta'|, 1/s")
+    drag: float = Field(description="beta of the same equation, 1/rad")
+    mass: float = Field(description="the bob's mass, kg: the energies in J are m g l times those in units of m g l; "
+                                    "the motion does not depend on it")
 
 
 class Units(_Model):

@@ -41,6 +41,9 @@ ALLOWED = {
     "unit": "rad or deg: the unit of a plain-number amplitude",
     "omega0": "a finite number (rad/s), such as 2 or -1.5: the angular velocity at t = 0",
     "columns": "state (t, theta, omega) or all (also the exact motion, the global error and the energy error)",
+    "damping": "a finite number >= 0 (1/s), such as 0.1: gamma of the damping term gamma theta'",
+    "drag": "a finite number >= 0 (1/rad), such as 0.5: beta of the drag term beta theta'|theta'|",
+    "mass": "a finite number > 0 (kg), such as 0.2: the bob's mass (the energies in J; not the period)",
 }
 
 #: 10^-1 .. 10^-4, four per decade: the range of problem 3(c) and a decade above.
@@ -111,8 +114,19 @@ def omega0(params: Mapping[str, str]) -> float:
     return float(inputs.real("omega0", text(params, "omega0", "0"), ALLOWED["omega0"]))
 
 
+def non_negative(params: Mapping[str, str], name: str) -> float:
+    """A number >= 0 by :func:`pendulab.core.inputs.non_negative` (0 when not given)."""
+    return float(inputs.non_negative(name, text(params, name, "0"), ALLOWED[name]))
+
+
+def mass(params: Mapping[str, str]) -> float:
+    """The bob's mass, kg (1 when not given): it scales the energies in J, never the motion."""
+    return float(inputs.positive("mass", text(params, "mass", "1"), ALLOWED["mass"]))
+
+
 def simulation(params: Mapping[str, str]) -> dict[str, Any]:
-    """All inputs of a simulation: pendulum, ``step``, ``t_max``, ``method``; its work within the limits."""
+    """All inputs of a simulation: pendulum, ``step``, ``t_max``, ``method``, ``damping``, ``drag``
+    and ``mass``; its work within the limits."""
     from ..numerics.simulation import step_count
 
     p = pendulum(params)
@@ -121,6 +135,9 @@ def simulation(params: Mapping[str, str]) -> dict[str, Any]:
     m = method(params)
     p["method"] = m.name
     p["omega0"] = omega0(params)
+    p["damping"] = non_negative(params, "damping")
+    p["drag"] = non_negative(params, "drag")
+    p["mass"] = mass(params)
     if not p["step"] < p["t_max"]:
         raise InputError("step", inputs.shown(text(params, "step")), f"< t_max = {p['t_max']:g} s")
     limits.check_run(p["t_max"], p["step"], m, text(params, "step"), text(params, "t_max"))

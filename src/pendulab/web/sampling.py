@@ -157,7 +157,7 @@ def simulate_arrays(p: Mapping[str, Any], points: int, period: float | None = No
     error_idx = frame_samples(n, per, 64, ERROR_POINTS)
     samples = np.union1d(np.union1d(phase_idx, frame_idx), error_idx)
     rec = fold.run(code, order, p["amplitude"], omega0, c, h, n, nb, samples,
-                     max(1, int(CHUNK_COST / cost_per_step(p["method"]))))
+                     max(1, int(CHUNK_COST / cost_per_step(p["method"]))), p.get("damping", 0.0), p.get("drag", 0.0))
     left, bad = int(rec.where[fold.LEFT]), int(rec.where[fold.BAD])
     val, at = rec.value, rec.step
     idx, theta = columns(at[fold.I_LO], val[fold.TH_LO], at[fold.I_HI], val[fold.TH_HI])

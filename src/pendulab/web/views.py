@@ -160,12 +160,13 @@ def _flags(p: Mapping[str, Any], sim: Mapping[str, Any], err_t: np.ndarray | Non
     # diagnosis reads as it reads a blown-up run: no warning for the log.
     with np.errstate(over="ignore", invalid="ignore"):
         d = diagnose(_energy0(p), h * np.asarray(sim["energy_idx"], dtype=float), sim["energy"], sim["period"],
-                     sim["n"] * h, left, bad, err_t, err)
+                     sim["n"] * h, left, bad, err_t, err, damped=damped(p))
     num = functools.partial(words.number, lang=lang)
     notes = []
     for f in d.notes:
         key = f.kind + ((".launched" if p.get("omega0", 0.0) else ".rest") if f.kind == "over-the-top" else "")
-        text = words.say(f"flag.{key}", lang, t=num(f.t, ".6g") if f.t is not None else "", h=num(h, "g"),
+        key = "lab.flag-damped" if f.kind == "damped" else f"flag.{key}"
+        text = words.say(key, lang, t=num(f.t, ".6g") if f.t is not None else "", h=num(h, "g"),
                          percent=num(100 * f.value, ".3g") if f.value is not None else "",
                          rad=num(f.value, ".3g") if f.value is not None else "",
                          deg=num(math.degrees(f.value), ".3g") if f.value is not None else "",
@@ -179,6 +180,11 @@ def _flags(p: Mapping[str, Any], sim: Mapping[str, Any], err_t: np.ndarray | Non
         "energy_drift_kind": out["energy_drift_kind"], "max_theta_error": out["max_theta_error"],
         "trustworthy": out["trustworthy"], "warnings": warnings, "notes": notes,
     }
+
+
+def damped(p: Mapping[str, Any]) -> bool:
+    """Whether the run is damped (``damping`` or ``drag`` not 0)."""
+    return bool(p.get("damping", 0.0) or p.get("drag", 0.0))
 
 
 def simulate_view(params: Mapping[str, str]) -> dict[str, Any]:
@@ -200,7 +206,9 @@ def simulate_view(params: Mapping[str, str]) -> dict[str, Any]:
     points = parameters.points(params, limits.DEFAULT_PLOT_POINTS, limits.MAX_POINTS)
     launched = _launch_view(p, params)
     per = periods(p["length"], p["amplitude"], p["g"])  # the one AGM period of the request, passed down
-    if launched is None:
+    if damped(p):  # the coursework's estimates time the undamped pendulum against its AGM period
+        est = {"estimate": None, "status": NOT_RUN, "reason": words.say("lab.reason-damped", lang)}
+    elif launched is None:
         est = estimate_view(p["length"], p["amplitude"], p["step"], p["g"], p["method"], per.period, lang)
     else:  # the coursework's estimate times a release at rest; a launch has its period from pendulab.numerics.launched
         est = {"estimate": None, "status": NOT_RUN, "reason": (
@@ -227,7 +235,7 @@ def simulate_view(params: Mapping[str, str]) -> dict[str, Any]:
         # One period of the exact orbit, a closed curve in the phase plane (a turn, for a launch that goes round).
         orbit = exact_state(p, np.linspace(0.0, sim["period"], ORBIT_POINTS))
     return {
-        "input": {k: p[k] for k in ("length", "amplitude", "step", "t_max", "g", "method")}
+        "input": {k: p[k] for k in ("length", "amplitude", "step", "t_max", "g", "method", "damping", "drag", "mass")}
         | {"amplitude_deg": math.degrees(p["amplitude"])},
         "units": {"t": "s", "theta": "rad", "omega": "rad/s", "period": "s", "energy": "m g l"},
         "n_steps": n,
@@ -300,6 +308,7 @@ def csv_blocks(p: Mapping[str, Any], points: int) -> Iterator[str]:
     n = step_count(0.0, p["t_max"], p["step"])
     stride = stride_for(n, points)  # at most ``points`` rows, step 0's included
     h, c = p["step"], -p["g"] / p["length"]
+    damping = (p.get("damping", 0.0), p.get("drag", 0.0))
     full = p if p.get("columns", "state") == "all" else None
     w0 = float(p.get("omega0", 0.0))
     first = _csv_rows(p, np.zeros(1), np.array([p["amplitude"]]), np.array([w0])) if full else f"{0.0!r},{p['amplitude']!r},{w0!r}\n"
@@ -308,7 +317,7 @@ def csv_blocks(p: Mapping[str, Any], points: int) -> Iterator[str]:
     i = 0
     while i < n:
         i1 = min(n, i + stride * CSV_BLOCK)
-        state, block = _csv_block(method, order, state, c, h, i, i1, stride, n, full)
+        state, block = _csv_block(method, order, state, c, h, i, i1, stride, n, full, damping)
         i = i1
         yield block
 
@@ -328,13 +337,14 @@ def _csv_rows(p: Mapping[str, Any], t: np.ndarray, theta: np.ndarray, omega: np.
 
 def _csv_block(code: int, order: int, state: tuple[float, float], c: float, h: float,
                i0: int, i1: int, stride: int, n: int,
-               full: Mapping[str, Any] | None = None) -> tuple[tuple[float, float], str]:
+               full: Mapping[str, Any] | None = None,
+               damping: tuple[float, float] = (0.0, 0.0)) -> tuple[tuple[float, float], str]:
     from ..engine.kernels import drive
     from ..numerics.simulation import kept_steps
 
     size = (i1 - i0) // stride + 2
     z1, z2 = np.empty(size), np.empty(size)
-    a, b, k = drive(code, order, state[0], state[1], c, h, i0, i1, stride, n, z1, z2)
+    a, b, k = drive(code, order, state[0], state[1], c, h, i0, i1, stride, n, z1, z2, float(damping[0]), float(damping[1]))
     ii = kept_steps(n, stride, i0 + 1, i1)  # the steps drive kept
     if full is not None:
         return (a, b), _csv_rows(full, h * ii[:k], z1[:k], z2[:k])
