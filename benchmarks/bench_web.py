@@ -15,7 +15,7 @@ The aim is under 50 ms for (3). Run: ``.venv/bin/python benchmarks/bench_web.py`
 (about 30 s). The load benchmark (200 heavy requests at once) is
 ``benchmarks/bench_web_load.py``.
 
-First, the streamed pass alone (``--pass``: only this): :func:`pendulab.engine.fold.run`
+First, the streamed pass alone (``--pass``: only this): :func:`pendulab.engine.kernels.folded`
 (the library's driver into a buffer, folded by a compiled reduction) against the fused loop
 it replaces (``fused_scan`` below: the step and the reduction in one loop), on the example
 group's pendulum (l = 2.0800838231 m, alpha = 4 pi/5, t_max = 20 s, 1000 columns and the
@@ -38,7 +38,7 @@ from numba import njit
 
 from pendulab.core.interrupt import CHUNK_COST, pieces, run_pieces
 from pendulab.core.methods import cost_per_step
-from pendulab.engine import fold
+from pendulab.engine import fold, kernels
 from pendulab.engine.kernels import step
 from pendulab.numerics.crossing import estimate_period
 from pendulab.numerics.period import agm_period
@@ -148,7 +148,7 @@ def pass_rows() -> list[dict]:
         per = float(agm_period(EXAMPLE_LENGTH, alpha)) / h
         samples = np.union1d(np.union1d(sampling.phase_samples(n, per)[0], sampling.frame_samples(n, per)),
                              sampling.frame_samples(n, per, 64, sampling.ERROR_POINTS))
-        new = functools.partial(fold.run, code, order, alpha, 0.0, c, h, n, nb, samples, size)
+        new = functools.partial(kernels.folded, code, order, alpha, 0.0, c, h, n, nb, samples, size)
         old = functools.partial(fused_pass, code, order, alpha, c, h, n, nb, samples, size)
         r, (value, steps, s_th, s_om, flags) = new(), old()
         same = (np.array_equal(r.value.view(np.int64), value.view(np.int64)) and np.array_equal(r.step, steps)

@@ -44,6 +44,17 @@ def _one_call(method, order, alpha, c, h, n):
     return z1, z2
 
 
+def _one_search(method, order, alpha, c, h, n):
+    """The whole period search in one call of its kernel: the reference for the pieces."""
+    z1w, z2w = np.zeros(5), np.zeros(5)
+    z1w[2] = alpha
+    status, j = kernels.search_return(method, order, c, h, n, 0, n, z1w, z2w)
+    if status != kernels.FOUND:
+        z1w[:] = 0.0
+        z2w[:] = 0.0
+    return status, j, z1w, z2w
+
+
 @pytest.mark.slow
 @settings(max_examples=25, deadline=None)
 @given(m=st.sampled_from(METHODS), alpha=st.floats(0.01, 3.1), h=st.floats(1e-3, 0.3),
@@ -54,7 +65,7 @@ def test_pieces_give_the_same_bits_as_one_call(m, alpha, h, n, stride, piece):
     method, order = m
     c = -G / 2.0
     ref1, ref2 = _one_call(method, order, alpha, c, h, n)
-    one = kernels.first_return(method, order, alpha, c, h, n)
+    one = _one_search(method, order, alpha, c, h, n)
     with pytest.MonkeyPatch.context() as mp:
         mp.setattr(kernels, "CHUNK_COST", piece * 50)  # pieces of piece * 50 / cost steps
         _cut(method, order, alpha, c, h, n, stride, ref1, ref2, one)
@@ -66,7 +77,7 @@ def _cut(method, order, alpha, c, h, n, stride, ref1, ref2, one):
     keep = np.r_[np.arange(0, n + 1, stride), [n] if n % stride else []].astype(int)
     t1, t2 = kernels.thinned(method, order, alpha, c, h, n, stride, len(keep))
     assert np.array_equal(t1, ref1[keep], equal_nan=True) and np.array_equal(t2, ref2[keep], equal_nan=True)
-    cut = kernels.first_return_pieces(method, order, alpha, c, h, n)
+    cut = kernels.first_return(method, order, alpha, c, h, n)
     assert cut[0] == one[0] and cut[1] == one[1]
     assert np.array_equal(cut[2], one[2]) and np.array_equal(cut[3], one[3])
 
@@ -75,7 +86,7 @@ def test_long_fine_runs_in_pieces_give_the_same_bits(monkeypatch):
     """(3) long and fine runs, in pieces."""
     alpha, c, h, n = 2.5, -G / EXAMPLE_LENGTH, 1e-5, 501_234
     ref1, ref2 = _one_call(0, 2, alpha, c, h, n)
-    one = kernels.first_return(0, 2, alpha, c, h, n)
+    one = _one_search(0, 2, alpha, c, h, n)
     assert one[0] == kernels.FOUND  # the period, about 4.8 s, within n h
     monkeypatch.setattr(kernels, "CHUNK_COST", 9973)
     z1, z2 = kernels.trajectory(0, 2, alpha, c, h, n)
@@ -84,7 +95,7 @@ def test_long_fine_runs_in_pieces_give_the_same_bits(monkeypatch):
         keep = np.r_[np.arange(0, n + 1, stride), [n] if n % stride else []].astype(int)
         t1, t2 = kernels.thinned(0, 2, alpha, c, h, n, stride, len(keep))
         assert np.array_equal(t1, ref1[keep]) and np.array_equal(t2, ref2[keep])
-    cut = kernels.first_return_pieces(0, 2, alpha, c, h, n)
+    cut = kernels.first_return(0, 2, alpha, c, h, n)
     assert cut[:2] == one[:2] and np.array_equal(cut[2], one[2]) and np.array_equal(cut[3], one[3])
 
 

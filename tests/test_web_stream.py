@@ -17,7 +17,7 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 
 from pendulab.core.interrupt import CHUNK_COST
-from pendulab.engine import fold
+from pendulab.engine import fold, kernels
 from pendulab.engine.kernels import drive
 from pendulab.numerics import simulation
 from pendulab.numerics.simulation import method_code
@@ -104,7 +104,7 @@ def test_the_pass_keeps_what_the_stored_run_has(method, length, alpha, h, t_max,
     samples = samples_of(n, n)
     code, order = method_code(method)
     c = -g / length
-    rec = fold.run(code, order, alpha, 0.0, c, h, n, nb, samples, size)
+    rec = kernels.folded(code, order, alpha, 0.0, c, h, n, nb, samples, size)
     assert_same(rec, reference(traj.theta, traj.omega, nb, samples, alpha, 0.0, c))
 
 
@@ -123,7 +123,7 @@ def test_a_launched_pass(method, omega0):
     th[0], om[0] = alpha, omega0
     drive(code, order, alpha, omega0, c, h, 0, n, 1, n, th[1:], om[1:])
     samples = samples_of(n, 1)
-    rec = fold.run(code, order, alpha, omega0, c, h, n, 400, samples, 5000)
+    rec = kernels.folded(code, order, alpha, omega0, c, h, n, 400, samples, 5000)
     assert_same(rec, reference(th, om, 400, samples, alpha, omega0, c))
 
 
@@ -134,7 +134,7 @@ def test_any_cut_keeps_the_same(n, nb, size, alpha, h):
     traj = simulation.simulate(9.80665, alpha, h, (n + 0.25) * h, g=9.80665)  # c = -g/l = -1
     n = len(traj.theta) - 1  # Round(t_max/h), as the web counts it
     samples = samples_of(n, size)
-    rec = fold.run(*method_code("taylor2"), alpha, 0.0, -1.0, h, n, nb, samples, size)
+    rec = kernels.folded(*method_code("taylor2"), alpha, 0.0, -1.0, h, n, nb, samples, size)
     assert_same(rec, reference(traj.theta, traj.omega, nb, samples, alpha, 0.0, -1.0))
 
 
@@ -155,20 +155,21 @@ def test_ctrl_c_stops_the_pass_between_pieces(monkeypatch):
     (what it did is counted, not how long it took)."""
     code, order = method_code("taylor2")
     n = 200_000_000  # 48 pieces of CHUNK_COST steps
-    real = fold.piece
+    real = kernels.drive
     calls = []
 
     def counted(*args):
-        calls.append(args[5:7])  # (i0, i1)
-        real(*args)
+        calls.append(args[6:8])  # (i0, i1)
+        out = real(*args)
         if len(calls) == 3:
             os.kill(os.getpid(), signal.SIGINT)  # handled between two pieces (inside deferred)
+        return out
 
-    monkeypatch.setattr(fold, "piece", counted)
+    monkeypatch.setattr(kernels, "drive", counted)
     old = signal.signal(signal.SIGINT, signal.default_int_handler)  # a run in the background inherits it ignored
     try:
         with pytest.raises(KeyboardInterrupt):
-            fold.run(code, order, 1.0, 0.0, -9.80665, 1e-5, n, 100, np.array([0, n]), CHUNK_COST)
+            kernels.folded(code, order, 1.0, 0.0, -9.80665, 1e-5, n, 100, np.array([0, n]), CHUNK_COST)
     finally:
         signal.signal(signal.SIGINT, old)
     assert len(calls) == 3 and calls[-1][1] == 3 * CHUNK_COST < n

@@ -1,7 +1,8 @@
 """The explorer's streamed pass: the library's trajectory driver, folded into what is drawn.
 
 :func:`pendulab.engine.kernels.drive` runs the steps into a small buffer, :data:`BUFFER` states
-at a time, and :func:`fold` (no step inside) folds each buffer into the pass's record, so
+at a time, and folds each full buffer into the pass's record by :func:`fold` (its keep-mode
+``fold``; no step inside the fold), so
 every value kept is the value :func:`pendulab.numerics.simulation.simulate` computes at that step, bit
 for bit, and the memory is O(columns + samples + :data:`BUFFER`) whatever the run's length.
 
@@ -11,8 +12,9 @@ in time order has, column by column, the same extent as the whole trajectory (th
 min/max reduction of Jugel et al., "M4: A Visualization-Oriented Time Series Data
 Aggregation", PVLDB 7(10), 2014). It also keeps the full state at a list of steps (the
 phase portrait's and the animation's samples), the first step over the top and the first
-non-finite state. :func:`run` carries the record from piece to piece of the run, so the
-caller stops between two pieces (a request whose client has gone, Ctrl+C).
+non-finite state. :func:`pendulab.engine.kernels.folded` carries the record from piece to
+piece of the run, so the caller stops between two pieces (a request whose client has gone,
+Ctrl+C).
 """
 from __future__ import annotations
 
@@ -21,9 +23,6 @@ from dataclasses import dataclass
 
 import numpy as np
 from numba import njit
-
-from ..core.interrupt import pieces, run_pieces
-from .kernels import drive
 
 #: States per buffer of the driver (16 bytes each): small enough to stay in the cache
 #: between the driver writing it and the fold reading it.
@@ -67,16 +66,23 @@ class Record:
         return cls(value, np.full((4, nb), -1, dtype=np.int64), samples,
                    np.empty(len(samples)), np.empty(len(samples)), where)
 
+    def fold_args(self, n: int, scale: float, e0: float) -> tuple:
+        """The record as :func:`fold`'s last argument (``drive``'s ``fold``): a run of ``n`` steps,
+        the energy drift's ``scale`` and ``e0``."""
+        return (n, scale, e0, self.value, self.step, self.where, self.samples, self.s_theta, self.s_omega)
+
 
 @njit(cache=True, nogil=True)
-def fold(z1, z2, count, i0, n, scale, e0, value, step, where, samples, s_theta, s_omega):
-    """Fold the states ``z1[k], z2[k]`` of steps ``i0 + k``, ``k < count``, into the record.
+def fold(z1, z2, count, i0, rec):
+    """Fold the states ``z1[k], z2[k]`` of steps ``i0 + k``, ``k < count``, into the record
+    ``rec`` (:meth:`Record.fold_args`).
 
     The energy drift is ``(E - E0)/(m g l) = theta'^2 l/(2g) - cos(theta) + e0`` with
     ``scale = l/(2g)`` and ``e0 = cos(alpha) - omega0^2 l/(2g)``. A column's part of the
     buffer is folded with its extremes held in locals; the samples are copied from the
     buffer afterwards.
     """
+    n, scale, e0, value, step, where, samples, s_theta, s_omega = rec
     nb = value.shape[1]
     col, nxt, left, bad = where[COL], where[NEXT], where[LEFT], where[BAD]
     k = 0
@@ -120,44 +126,3 @@ def fold(z1, z2, count, i0, n, scale, e0, value, step, where, samples, s_theta, 
         s_omega[s] = z2[samples[s] - i0]
         s += 1
     where[COL], where[NEXT], where[SAMPLE], where[LEFT], where[BAD] = col, nxt, s, left, bad
-
-
-@njit(cache=True, nogil=True)
-def piece(method, order, c, h, n, i0, i1, z, buf1, buf2, scale, e0, value, step, where, samples,
-          s_theta, s_omega, gamma, beta):
-    """Steps ``i0 + 1 .. i1`` from the state ``z`` of step ``i0`` (updated to that of ``i1``):
-    :func:`pendulab.engine.kernels.drive` a buffer at a time, each folded by :func:`fold`. The
-    first piece (``i0 = 0``) folds the start state too; ``gamma, beta`` the damping (``drive``)."""
-    a, b = z[0], z[1]
-    if i0 == 0:
-        buf1[0], buf2[0] = a, b
-        fold(buf1, buf2, 1, 0, n, scale, e0, value, step, where, samples, s_theta, s_omega)
-    size = len(buf1)
-    i = i0
-    while i < i1:
-        j = min(i1, i + size)
-        a, b, k = drive(method, order, a, b, c, h, i, j, 1, n, buf1, buf2, gamma, beta)
-        fold(buf1, buf2, k, i + 1, n, scale, e0, value, step, where, samples, s_theta, s_omega)
-        i = j
-    z[0], z[1] = a, b
-
-
-def run(method: int, order: int, alpha: float, omega0: float, c: float, h: float, n: int, nb: int,
-        samples: np.ndarray, size: int, gamma: float = 0.0, beta: float = 0.0) -> Record:
-    """Steps ``0 .. n`` (``n >= 1``) of a run from ``(alpha, omega0)`` (``c = -g/l``) of the method
-    of code ``method`` (the steps of :func:`pendulab.numerics.simulation.simulate`), in pieces of ``size`` steps
-    (:func:`pendulab.core.interrupt.run_pieces`: a set event or a signal stops it between two),
-    damped by ``gamma, beta`` (:func:`pendulab.engine.kernels.drive`)."""
-    rec = Record.empty(n, nb, samples)
-    scale = 1.0 / (-2.0 * c) if c != 0.0 else 0.0
-    e0 = math.cos(alpha) - omega0 * omega0 * scale
-    z = np.array([alpha, omega0])
-    buf1, buf2 = np.empty(min(BUFFER, max(1, n))), np.empty(min(BUFFER, max(1, n)))
-
-    def one(i0: int, i1: int) -> bool:
-        piece(method, order, c, h, n, i0, i1, z, buf1, buf2, scale, e0, rec.value, rec.step, rec.where,
-              samples, rec.s_theta, rec.s_omega, float(gamma), float(beta))
-        return False
-
-    run_pieces(pieces(n, size), one)
-    return rec

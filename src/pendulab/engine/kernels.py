@@ -5,7 +5,7 @@ and literal: :func:`taylor2_step` is the coursework's (3) in the order of operat
 its program (``pendulab/programs/taylor.py``, which the report prints), the same points bit
 for bit. :func:`step` dispatches on a method's kernel code: one branch per integrator of
 :mod:`pendulab.core.methods`. :func:`drive` runs a trajectory of any code,
-:func:`search_return` the period search; no method has a loop of its own.
+:func:`first_return` the period search (in pieces of :func:`search_return`); no method has a loop of its own.
 :func:`agm_means` runs the AGM of (7) over arrays.
 Compiled kernels are cached on disk (``cache=True``): a second run does not compile.
 """
@@ -17,6 +17,8 @@ from numba import njit, prange
 from ..core.interrupt import CHUNK_COST, pieces, run_pieces
 from ..core.methods import MAX_TAYLOR_ORDER, Kernel, Status, cost_per_step
 from .agm import agm
+from .fold import BUFFER, Record
+from .fold import fold as fold_states
 from .libm import cos, sin
 
 #: Method codes understood by :func:`step` (the registry's, as plain ints for numba).
@@ -225,16 +227,22 @@ def damped_step(method, order, z1, z2, h, c, gamma, beta):
 
 
 @njit(cache=True, nogil=True)
-def drive(method, order, a, b, c, h, i0, i1, stride, n, z1, z2, gamma=0.0, beta=0.0):
+def drive(method, order, a, b, c, h, i0, i1, stride, n, z1, z2, gamma=0.0, beta=0.0, fold=None):
     """Steps ``i0 + 1 .. i1`` of a run of ``n`` steps, from the state ``(a, b)`` of step ``i0``:
     the one loop of a trajectory, with "what to keep" as its parameters.
 
     Keeps the state of every step that is a multiple of ``stride``, and of step ``n``, in
-    ``z1[k], z2[k]`` for ``k = 0, 1, ...``. Returns ``(a, b, k)``: the state of step ``i1`` and
-    how many states were kept. ``i1 <= n``. ``gamma, beta``: the damping (:func:`damped_step`);
-    without it the step is :func:`step`'s, the same points bit for bit.
+    ``z1[k], z2[k]`` for ``k = 0, 1, ...``. With ``fold`` (the page's record,
+    :meth:`pendulab.engine.fold.Record.fold_args`; ``stride`` 1), ``z1, z2`` are a buffer:
+    each time it is full, and at the end, its states go to :func:`pendulab.engine.fold.fold`
+    and it is emptied (diffrax's ``SaveAt(fn=...)``: a function of the states kept, not the
+    states). Returns ``(a, b, k)``: the state of step ``i1`` and how many states are in
+    ``z1, z2`` (0 with ``fold``). ``i1 <= n``. ``gamma, beta``: the damping
+    (:func:`damped_step`); without it the step is :func:`step`'s, the same points bit for bit.
     """
     k = 0
+    first = i0 + 1  # the step of z1[0], z2[0] (with fold: consecutive steps from there)
+    size = len(z1)
     keep = (i0 // stride + 1) * stride  # the next multiple of stride: no division per step
     damped = gamma != 0.0 or beta != 0.0
     for i in range(i0 + 1, i1 + 1):
@@ -247,6 +255,12 @@ def drive(method, order, a, b, c, h, i0, i1, stride, n, z1, z2, gamma=0.0, beta=
             z2[k] = b
             k += 1
             keep += stride
+            if fold is not None and k == size:
+                fold_states(z1, z2, k, first, fold)
+                k, first = 0, i + 1
+    if fold is not None and k > 0:
+        fold_states(z1, z2, k, first, fold)
+        k = 0
     return a, b, k
 
 
@@ -286,6 +300,30 @@ def trajectory(method, order, alpha, c, h, n, gamma=0.0, beta=0.0):
     return thinned(method, order, alpha, c, h, n, 1, n + 1, gamma, beta)
 
 
+def folded(method: int, order: int, alpha: float, omega0: float, c: float, h: float, n: int, nb: int,
+           samples: np.ndarray, size: int, gamma: float = 0.0, beta: float = 0.0) -> Record:
+    """The page's record (:class:`pendulab.engine.fold.Record`) of steps ``0 .. n`` (``n >= 1``)
+    of a run from ``(alpha, omega0)`` (``c = -g/l``) of the method of code ``method`` (the
+    steps of :func:`pendulab.numerics.simulation.simulate`), damped by ``gamma, beta``
+    (:func:`drive`), in pieces of ``size`` steps (:func:`pendulab.core.interrupt.run_pieces`:
+    a set event or a signal stops it between two)."""
+    rec = Record.empty(n, nb, samples)
+    scale = 1.0 / (-2.0 * c) if c != 0.0 else 0.0
+    e0 = math.cos(alpha) - omega0 * omega0 * scale
+    args = rec.fold_args(n, scale, e0)
+    z = [float(alpha), float(omega0)]
+    gamma, beta = float(gamma), float(beta)
+    fold_states(np.array([alpha]), np.array([omega0]), 1, 0, args)  # step 0
+    buf1, buf2 = np.empty(min(BUFFER, max(1, n))), np.empty(min(BUFFER, max(1, n)))
+
+    def one(i0: int, i1: int) -> bool:
+        z[:] = drive(method, order, z[0], z[1], c, h, i0, i1, 1, n, buf1, buf2, gamma, beta, args)[:2]
+        return False
+
+    run_pieces(pieces(n, size), one)
+    return rec
+
+
 #: Status codes of :func:`first_return` (:class:`pendulab.core.methods.Status`, as plain ints).
 FOUND, NO_RETURN, LEFT_OSCILLATION, TOO_EARLY = (
     int(s) for s in (Status.FOUND, Status.NO_RETURN, Status.LEFT_OSCILLATION, Status.TOO_EARLY)
@@ -317,30 +355,6 @@ def return_rule(i, n, z1n, z2, z2n):
             return NO_RETURN, n
         return FOUND, i
     return UNDECIDED, i
-
-
-@njit(cache=True, nogil=True)
-def first_return(method, order, alpha, c, h, n):
-    """Stream the integrator of kernel code ``method`` until the first return to ``P = (alpha, 0)``,
-    keeping 5 points only.
-
-    Looks for the first ``j`` with ``z2_j > 0 >= z2_{j+1}`` and ``z1_{j+1} > 0``: the
-    sign change of ``theta'`` from + to - at the top of the swing. Returns
-    ``(status, j, z1w, z2w)`` where the window holds ``Z_{j-2} .. Z_{j+2}`` when found
-    (zeros otherwise). The search itself is :func:`search_return`, all ``n`` steps at once.
-    """
-    z1w = np.empty(5)  # np.empty, not np.zeros: the one allocator taylor_step compiles already
-    z2w = np.empty(5)
-    for k in range(5):
-        z1w[k] = 0.0
-        z2w[k] = 0.0
-    z1w[2] = alpha
-    status, j = search_return(method, order, c, h, n, 0, n, z1w, z2w)
-    if status != FOUND:
-        for k in range(5):
-            z1w[k] = 0.0
-            z2w[k] = 0.0
-    return status, j, z1w, z2w
 
 
 @njit(cache=True, nogil=True)
@@ -383,10 +397,18 @@ def search_return(method, order, c, h, n, lo, hi, z1w, z2w):
     return status, j
 
 
-def first_return_pieces(method, order, alpha, c, h, n):
-    """:func:`first_return` for the method of code ``method`` (a
-    :class:`~pendulab.core.methods.Kernel`), run in pieces of :func:`search_return` (the same
-    result, bit for bit): a signal stops it between two pieces (:func:`pendulab.core.interrupt.run_pieces`)."""
+def first_return(method, order, alpha, c, h, n):
+    """The period search: stream the integrator of kernel code ``method`` (a
+    :class:`~pendulab.core.methods.Kernel`) until the first return to ``P = (alpha, 0)``,
+    keeping 5 points only.
+
+    Looks for the first ``j`` with ``z2_j > 0 >= z2_{j+1}`` and ``z1_{j+1} > 0``: the
+    sign change of ``theta'`` from + to - at the top of the swing (:func:`return_rule`).
+    Returns ``(status, j, z1w, z2w)`` where the window holds ``Z_{j-2} .. Z_{j+2}`` when found
+    (zeros otherwise). The steps run in pieces of :func:`search_return` (the same result, bit
+    for bit, as one call over all ``n`` steps): a signal stops it between two pieces
+    (:func:`pendulab.core.interrupt.run_pieces`).
+    """
     z1w = np.zeros(5)
     z2w = np.zeros(5)
     z1w[2] = alpha

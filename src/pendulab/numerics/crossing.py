@@ -208,7 +208,7 @@ def search_period(
     t0, t_max, step = v.time_span(t0, t_max, step)
     m = resolve(method)
     n = v.steps_within("step", t0, t_max, step, v.steps_for(m, MAX_STEPS), v.steps_of(m))
-    from ..engine.kernels import first_return_pieces
+    from ..engine.kernels import first_return
 
     c = -g / length
     common: dict[str, Any] = {"estimate": None, "length": length, "amplitude": alpha, "step": step, "g": g,
@@ -216,7 +216,7 @@ def search_period(
     if stuck(int(m.code), m.order, alpha, c, step):
         return PeriodSearch(Status.NO_RETURN, underflow=True, moving_amplitude=0.5 * (SUBNORMAL / abs(c * step)),
                             **common)
-    status, j, z1w, z2w = first_return_pieces(int(m.code), m.order, alpha, c, step, n)
+    status, j, z1w, z2w = first_return(int(m.code), m.order, alpha, c, step, n)
     status = Status(int(status))
     if status == Status.NO_RETURN:
         suggest = default_t_max(period, step, t0)

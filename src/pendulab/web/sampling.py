@@ -4,7 +4,7 @@
 min/max reduction of Jugel et al., "M4: A Visualization-Oriented Time Series Data
 Aggregation", PVLDB 7(10), 2014); the phase portrait keeps whole orbits; the animation and
 the global error keep evenly spaced steps. :func:`simulate_arrays` runs the one streamed
-pass (:func:`pendulab.engine.fold.run`: the library's trajectory driver, folded as it goes) in
+pass (:func:`pendulab.engine.kernels.folded`: the library's trajectory driver, folded as it goes) in
 pieces, as the library's drivers run theirs, so a request whose client has gone stops between
 two pieces.
 """
@@ -134,7 +134,7 @@ def simulate_arrays(p: Mapping[str, Any], points: int, period: float | None = No
     :func:`pendulab.core.interrupt.stop_when`, a set event stops the pass between two pieces.
     ``period``: the AGM period of a release at rest where the caller has it.
     """
-    from ..engine import fold
+    from ..engine import fold, kernels
     from ..numerics.period import agm_period
     from ..numerics.simulation import method_code, step_count
 
@@ -156,8 +156,8 @@ def simulate_arrays(p: Mapping[str, Any], points: int, period: float | None = No
     frame_idx = frame_samples(n, per)
     error_idx = frame_samples(n, per, 64, ERROR_POINTS)
     samples = np.union1d(np.union1d(phase_idx, frame_idx), error_idx)
-    rec = fold.run(code, order, p["amplitude"], omega0, c, h, n, nb, samples,
-                     max(1, int(CHUNK_COST / cost_per_step(p["method"]))), p.get("damping", 0.0), p.get("drag", 0.0))
+    rec = kernels.folded(code, order, p["amplitude"], omega0, c, h, n, nb, samples,
+                         max(1, int(CHUNK_COST / cost_per_step(p["method"]))), p.get("damping", 0.0), p.get("drag", 0.0))
     left, bad = int(rec.where[fold.LEFT]), int(rec.where[fold.BAD])
     val, at = rec.value, rec.step
     idx, theta = columns(at[fold.I_LO], val[fold.TH_LO], at[fold.I_HI], val[fold.TH_HI])
