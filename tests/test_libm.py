@@ -1,15 +1,13 @@
-"""The kernels' sin and cos (pendulab.engine.libm) return Python's math.sin and math.cos bit for bit.
-
-They call the C library directly instead of through numba's intrinsics (for speed), so
-the coursework's numbers depend on their being the same functions.
+"""The kernels' sin and cos (numba's math.sin and math.cos, which LLVM may merge into one
+sincos) return Python's math.sin and math.cos bit for bit: the coursework's numbers depend
+on their being the same functions.
 """
 import math
 
 import numpy as np
 from numba import njit
 
-from pendulab.engine.kernels import FOUND, TAYLOR2, drive, first_return
-from pendulab.engine.libm import cos, sin
+from pendulab.engine.kernels import FOUND, TAYLOR2, cos, drive, first_return, sin
 from reference import EXAMPLE_LENGTH, G, taylor2_plain
 
 

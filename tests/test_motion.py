@@ -6,7 +6,7 @@ import numpy as np
 import pytest
 
 from pendulab.core.errors import InputError
-from pendulab.numerics.motion import energy, exact_motion, global_error, jacobi, quarter_period
+from pendulab.numerics.motion import energy, energy_drift, exact_motion, global_error, jacobi, quarter_period
 from pendulab.numerics.period import agm_period
 from pendulab.numerics.simulation import simulate
 from reference import EXAMPLE_LENGTH, G
@@ -172,3 +172,18 @@ def test_exact_motion_within_its_bound_after_1000_periods(alpha):
     assert np.all(np.abs(ex.omega - ref[:, 1]) <= bound_omega)
     # The error does not grow with t: a few ulps of theta, as in the first periods.
     assert err.max() <= 16 * 2.0**-52
+
+
+def test_energy_drift_is_the_energy_difference_in_m_g_l():
+    # (E - E0)/(m g l) with E/(m g l) = theta'^2 l/(2g) + 1 - cos(theta), in mpmath at 40 digits.
+    rng = np.random.default_rng(5)
+    theta, omega = rng.uniform(-3, 3, 50), rng.uniform(-5, 5, 50)
+    alpha, w0, length = 2.5, 0.75, 3.5
+    got = energy_drift(theta, omega, alpha, w0, length, G)
+    with mpmath.workdps(40):
+        def e(th, om):
+            return mpmath.mpf(om) ** 2 * length / (2 * mpmath.mpf(G)) + 1 - mpmath.cos(th)
+
+        ref = np.array([float(e(a, b) - e(alpha, w0)) for a, b in zip(theta, omega)])
+    assert np.allclose(got, ref, rtol=0, atol=8 * np.finfo(float).eps)
+    assert energy_drift(alpha, w0, alpha, w0, length, G) == 0.0

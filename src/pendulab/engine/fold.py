@@ -72,13 +72,30 @@ class Record:
         return (n, scale, e0, self.value, self.step, self.where, self.samples, self.s_theta, self.s_omega)
 
 
+@njit(cache=True, nogil=True, inline="always")
+def energy(theta, omega, scale):
+    """The energy of (2), ``E/(m g l) - 1 = theta'^2 l/(2g) - cos(theta)`` with ``scale = l/(2g)``:
+    the kinetic ``m l^2 theta'^2/2`` and the potential ``m g l (1 - cos theta)`` over ``m g l``,
+    less 1. The one statement of the energy (the page's fold, :func:`energies`)."""
+    return omega * omega * scale - math.cos(theta)
+
+
+@njit(cache=True, nogil=True)
+def energies(theta, omega, scale):
+    """:func:`energy` of each state ``(theta[i], omega[i])`` (1-D arrays of one size), a new array."""
+    out = np.empty(theta.size)
+    for i in range(theta.size):
+        out[i] = energy(theta[i], omega[i], scale)
+    return out
+
+
 @njit(cache=True, nogil=True)
 def fold(z1, z2, count, i0, rec):
     """Fold the states ``z1[k], z2[k]`` of steps ``i0 + k``, ``k < count``, into the record
     ``rec`` (:meth:`Record.fold_args`).
 
-    The energy drift is ``(E - E0)/(m g l) = theta'^2 l/(2g) - cos(theta) + e0`` with
-    ``scale = l/(2g)`` and ``e0 = cos(alpha) - omega0^2 l/(2g)``. A column's part of the
+    The energy drift is ``(E - E0)/(m g l) = energy(theta, theta', scale) + e0`` with
+    ``scale = l/(2g)`` and ``e0 = -energy(alpha, omega0, scale)`` (:func:`energy`). A column's part of the
     buffer is folded with its extremes held in locals; the samples are copied from the
     buffer afterwards.
     """
@@ -105,7 +122,7 @@ def fold(z1, z2, count, i0, rec):
                 t_hi = a
                 w_hi = b
                 j_hi = i0 + m
-            e = b * b * scale - math.cos(a) + e0
+            e = energy(a, b, scale) + e0
             if e < en_lo:
                 en_lo = e
                 je_lo = i0 + m

@@ -17,9 +17,12 @@ from numba import njit, prange
 from ..core.interrupt import CHUNK_COST, pieces, run_pieces
 from ..core.methods import MAX_TAYLOR_ORDER, Kernel, Status, cost_per_step
 from .agm import agm
-from .fold import BUFFER, Record
+from .fold import BUFFER, Record, energy
 from .fold import fold as fold_states
-from .libm import cos, sin
+
+#: The C library's sine and cosine (numba's ``math.sin``, ``math.cos``): the functions the
+#: coursework's program calls, so the same points bit for bit (tests/test_libm.py).
+sin, cos = math.sin, math.cos
 
 #: Method codes understood by :func:`step` (the registry's, as plain ints for numba).
 TAYLOR2, RK4, VERLET, TAYLOR = (int(k) for k in (Kernel.TAYLOR2, Kernel.RK4, Kernel.VERLET, Kernel.TAYLOR))
@@ -28,7 +31,7 @@ TAYLOR2, RK4, VERLET, TAYLOR = (int(k) for k in (Kernel.TAYLOR2, Kernel.RK4, Ker
 @njit(cache=True, nogil=True, inline="always")
 def taylor2_step(z1, z2, h, c):
     """One step of the coursework's second-order Taylor algorithm, equations (3)."""
-    s = sin(z1)  # the C library's sin, then its cos: no slower than one sincos (libm.py)
+    s = sin(z1)
     z1_next = z1 + h * z2 + 0.5 * h * h * c * s
     z2_next = z2 + h * c * s + 0.5 * h * h * c * z2 * cos(z1)
     return z1_next, z2_next
@@ -309,7 +312,7 @@ def folded(method: int, order: int, alpha: float, omega0: float, c: float, h: fl
     a set event or a signal stops it between two)."""
     rec = Record.empty(n, nb, samples)
     scale = 1.0 / (-2.0 * c) if c != 0.0 else 0.0
-    e0 = math.cos(alpha) - omega0 * omega0 * scale
+    e0 = -energy(float(alpha), float(omega0), scale)
     args = rec.fold_args(n, scale, e0)
     z = [float(alpha), float(omega0)]
     gamma, beta = float(gamma), float(beta)

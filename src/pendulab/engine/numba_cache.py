@@ -37,7 +37,7 @@ _DONE: list[str] = []
 KERNEL_SOURCES = (
     "core/errors.py", "core/interrupt.py", "core/methods.py",
     "engine/agm.py", "engine/fold.py", "engine/kernels.py", "engine/lanes.py",
-    "engine/libm.py", "engine/mean.py", "engine/numba_cache.py",
+    "engine/mean.py", "engine/numba_cache.py",
 )
 #: The package's folder: KERNEL_SOURCES are relative to it.
 _PACKAGE = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))

@@ -310,10 +310,24 @@ def exact_motion_error_bound(length: Any, amplitude: Any, t: Any, g: Any = G) ->
 
 
 def energy(theta: Any, omega: Any, length: Any, g: Any = G) -> np.ndarray:
-    """``E = theta'^2/2 - (g/l) cos(theta)``: conserved by (2) (per unit ``m l^2``)."""
+    """``E = theta'^2/2 - (g/l) cos(theta)``: conserved by (2) (per unit ``m l^2``), from
+    :func:`pendulab.engine.fold.energy` (the one statement of the energy, in ``m g l``)."""
     length = v.positive("length", length)
     g = v.positive("g", g)
-    return 0.5 * np.asarray(omega) ** 2 - g / length * np.cos(theta)
+    return g / length * energy_drift(theta, omega, 0.0, 0.0, length, g) - g / length
+
+
+def energy_drift(theta: Any, omega: Any, amplitude: float, omega0: float, length: float, g: float = G) -> np.ndarray:
+    """``(E - E0)/(m g l)``: the energy of each state ``(theta, omega)`` less that of the release
+    ``(amplitude, omega0)``, in ``m g l`` (:func:`pendulab.engine.fold.energy`); at
+    ``amplitude = omega0 = 0``, ``E0`` is the energy at rest at the bottom."""
+    from ..engine.fold import energies
+    from ..engine.fold import energy as energy_mgl
+
+    th, om = np.broadcast_arrays(np.asarray(theta, dtype=float), np.asarray(omega, dtype=float))
+    scale = length / (2.0 * g)
+    e = energies(np.ascontiguousarray(th).ravel(), np.ascontiguousarray(om).ravel(), scale)
+    return e.reshape(th.shape) - energy_mgl(float(amplitude), float(omega0), scale)
 
 
 @dataclass(frozen=True, eq=False)
@@ -360,8 +374,7 @@ def global_error(trajectory: Trajectory) -> GlobalError:
     exact = exact_motion(tr.length, tr.amplitude, tr.t - tr.t0, tr.g)
     d_theta = tr.theta - exact.theta
     d_omega = tr.omega - exact.omega
-    e0 = -tr.g / tr.length * math.cos(tr.amplitude)
-    drift = energy(tr.theta, tr.omega, tr.length, tr.g) - e0
+    drift = tr.g / tr.length * energy_drift(tr.theta, tr.omega, tr.amplitude, 0.0, tr.length, tr.g)
     return GlobalError(
         t=tr.t,
         theta_error=d_theta,

@@ -135,11 +135,11 @@ def exact_state(p: Mapping[str, Any], t: np.ndarray) -> tuple[np.ndarray, np.nda
 
 
 def _energy0(p: Mapping[str, Any]) -> float:
-    """The release's energy above the bottom, ``E0/(m g l)``, by :func:`pendulab.numerics.motion.energy`."""
-    from ..numerics.motion import energy
+    """The release's energy above the bottom, ``E0/(m g l)`` (:func:`pendulab.numerics.motion.energy_drift`
+    of the release from rest at the bottom)."""
+    from ..numerics.motion import energy_drift
 
-    e = energy(np.array([p["amplitude"], 0.0]), np.array([p.get("omega0", 0.0), 0.0]), p["length"], p["g"])
-    return float(e[0] - e[1]) * p["length"] / p["g"]
+    return float(energy_drift(p["amplitude"], p.get("omega0", 0.0), 0.0, 0.0, p["length"], p["g"]))
 
 
 def _flags(p: Mapping[str, Any], sim: Mapping[str, Any], err_t: np.ndarray | None = None,
@@ -324,12 +324,12 @@ def csv_blocks(p: Mapping[str, Any], points: int) -> Iterator[str]:
 
 def _csv_rows(p: Mapping[str, Any], t: np.ndarray, theta: np.ndarray, omega: np.ndarray) -> str:
     """Rows with the exact motion, the global error and the energy error beside the state
-    (:func:`pendulab.numerics.motion.energy`, in ``m g l`` above the bottom, less ``E0``)."""
-    from ..numerics.motion import energy
+    (:func:`pendulab.numerics.motion.energy_drift`, in ``m g l``)."""
+    from ..numerics.motion import energy_drift
 
     with np.errstate(invalid="ignore", over="ignore"):
         ex_theta, ex_omega = exact_state(p, t)
-        drift = (energy(theta, omega, p["length"], p["g"]) + p["g"] / p["length"]) * (p["length"] / p["g"]) - _energy0(p)
+        drift = energy_drift(theta, omega, p["amplitude"], p.get("omega0", 0.0), p["length"], p["g"])
         err = theta - ex_theta
     cols = [a.tolist() for a in (t, theta, omega, ex_theta, ex_omega, err, drift)]
     return "".join(",".join(repr(x) for x in row) + "\n" for row in zip(*cols))
