@@ -148,6 +148,8 @@ def test_length(cli):
         (["estimate", "--step", "1e-2,x"], ["x"]),
         (["estimate", "--t-max", "3"], ["does not return", "--t-max"]),
         (["estimate", "-a", "3", "--step", "0.5"], ["over the top"]),
+        (["estimate", "-l", "1", "-a", "3.14159265358979", "--step", "1e-3", "--method", "rk4"],
+         ["cannot be trusted near the separatrix", "energy error", "distance to the separatrix"]),
         (["estimate", "-a", "0"], ["--amplitude", "0"]),
         (["length", "0"], ["NUMBERS", "positive integers"]),
         (["length", "12a"], ["NUMBERS", "12a"]),

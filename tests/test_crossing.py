@@ -9,10 +9,10 @@ from hypothesis import strategies as st
 
 from pendulab.core.errors import InputError, LeftOscillationError, NoReturnError, NumericalError
 from pendulab.core.methods import Status
-from pendulab.numerics.crossing import estimate_period, observed_orders, search_period
+from pendulab.numerics.crossing import estimate_period, observed_orders, search_period, untrusted
 from pendulab.numerics.period import agm_period
 from pendulab.numerics.simulation import simulate
-from reference import EXAMPLE_LENGTH, G, taylor2_plain
+from reference import EXAMPLE_LENGTH, G, reference_period, taylor2_plain
 
 L3 = EXAMPLE_LENGTH  # problem 3(b), the spec's example group
 A3 = 4 * math.pi / 5
@@ -309,3 +309,54 @@ def test_subnormal_steps_whose_nodes_coincide_are_a_status():
     with pytest.raises(NumericalError, match="subnormal steps"):
         estimate_period(1.0, 5e-324, 0.25)
     assert list(sweep(np.array([5e-324]), [0.25])["status"]) == ["nodes_coincide"]
+
+
+# ---------------------------------------------------------------------------- trust near the separatrix
+def mp_window_drift(s):
+    """``max |E(z1_k, z2_k) - E(alpha, 0)|`` over the window and ``2 (g/l) cos^2(alpha/2)``, in mpmath
+    at 60 digits from the exact doubles (``E = z2^2/2 - (g/l) cos(z1)``)."""
+    import mpmath
+
+    e = s.estimate
+    with mpmath.workdps(60):
+        w2 = mpmath.mpf(s.g) / mpmath.mpf(s.length)
+        e0 = -w2 * mpmath.cos(mpmath.mpf(s.amplitude))
+        drift = max(abs(mpmath.mpf(z2) ** 2 / 2 - w2 * mpmath.cos(mpmath.mpf(z1)) - e0)
+                    for z1, z2 in zip(e.window_theta, e.window_omega))
+        return float(drift), float(2 * w2 * mpmath.cos(mpmath.mpf(s.amplitude) / 2) ** 2)
+
+
+@pytest.mark.parametrize("method", ["rk4", "verlet", "taylor:4"])
+@pytest.mark.parametrize("gap", [1e-12, 1e-9])
+def test_near_pi_a_return_that_cannot_be_trusted_is_a_status(method, gap):
+    """Issue 32: within 1e-9 of pi the estimates are 13-56 % off while the energy error exceeds
+    the distance to the separatrix; the search says so, with its numbers."""
+    from pendulab.core.errors import UntrustedError
+    from pendulab.jobs.sweep import sweep
+
+    alpha = math.pi - gap
+    s = search_period(1.0, alpha, 1e-3, method=method)
+    assert s.status == Status.UNTRUSTED and not s.found and s.estimate is not None
+    drift, distance = mp_window_drift(s)
+    assert s.max_energy_drift == pytest.approx(drift, rel=1e-6) and drift > distance
+    assert s.separatrix_distance == pytest.approx(distance, rel=1e-12)
+    period = float(reference_period(1.0, alpha))
+    assert abs(s.estimate.cubic - period) > 0.1 * period  # what the status warns of
+    with pytest.raises(UntrustedError, match="cannot be trusted near the separatrix") as err:
+        estimate_period(1.0, alpha, 1e-3, method=method)
+    assert err.value.max_energy_drift == s.max_energy_drift
+    if method == "rk4":
+        assert list(sweep(np.array([alpha]), [1e-3], methods=[method])["status"]) == ["untrusted"]
+
+
+def test_far_from_pi_a_return_is_trusted():
+    """The coursework's pendulum (problem 3(d)): the energy error far inside the distance."""
+    s = search_period(EXAMPLE_LENGTH, 4 * math.pi / 5, 1e-3)
+    drift, distance = mp_window_drift(s)
+    assert s.status == Status.FOUND and s.max_energy_drift == pytest.approx(drift, rel=1e-6)
+    assert drift < 1e-3 * distance and s.separatrix_distance == pytest.approx(distance, rel=1e-12)
+
+
+def test_a_quarter_period_off_is_untrusted():
+    assert untrusted(0.0, 1.0, 1.26, 1.0) and not untrusted(0.0, 1.0, 1.24, 1.0)
+    assert untrusted(2.0, 1.0, 1.0, 1.0) and not untrusted(1.0, 1.0, 1.0, 1.0)

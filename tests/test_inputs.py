@@ -216,10 +216,10 @@ def test_kernels_share_the_registry_codes():
     from pendulab.jobs import sweep
 
     assert tuple(methods.Kernel) == (kernels.TAYLOR2, kernels.RK4, kernels.VERLET, kernels.TAYLOR)
-    # the kernels' four; NODES_COINCIDE is search_period's own (two nodes z2 equal)
+    # the kernels' four; NODES_COINCIDE (two nodes z2 equal) and UNTRUSTED are search_period's own
     assert tuple(methods.Status)[:4] == (kernels.FOUND, kernels.NO_RETURN, kernels.LEFT_OSCILLATION, kernels.TOO_EARLY)
-    assert tuple(methods.Status)[4:] == (methods.Status.NODES_COINCIDE,)
-    assert sweep.STATUS == ("found", "no_return", "left_oscillation", "too_early", "nodes_coincide")
+    assert tuple(methods.Status)[4:] == (methods.Status.NODES_COINCIDE, methods.Status.UNTRUSTED)
+    assert sweep.STATUS == ("found", "no_return", "left_oscillation", "too_early", "nodes_coincide", "untrusted")
 
 
 def test_numerical_errors_are_not_value_errors():

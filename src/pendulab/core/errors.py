@@ -109,6 +109,19 @@ class LeftOscillationError(NumericalError):
         self.t = t
 
 
+class UntrustedError(NumericalError):
+    """The simulation returns to P, but its numbers cannot be trusted near the separatrix.
+
+    ``max_energy_drift``: its energy error at the return; ``separatrix_distance``: the energy
+    that takes the pendulum over the top (both per unit ``m l^2``, 1/s^2).
+    """
+
+    def __init__(self, message: str, *, max_energy_drift: float, separatrix_distance: float):
+        super().__init__(message)
+        self.max_energy_drift = max_energy_drift
+        self.separatrix_distance = separatrix_distance
+
+
 class MissingExtraError(ImportError):
     """An optional dependency that a command or function needs is not installed.
 

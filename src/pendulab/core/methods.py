@@ -37,6 +37,7 @@ class Status(IntEnum):
     LEFT_OSCILLATION = 2  # |theta| reached pi: the discrete pendulum went over the top
     TOO_EARLY = 3  # the sign change came before two earlier points existed
     NODES_COINCIDE = 4  # theta' moves in subnormal steps: two of the five interpolation nodes z2 coincide
+    UNTRUSTED = 5  # a return, but the energy error exceeds the distance to the separatrix or the estimate is a quarter period off
 
 
 @dataclass(frozen=True)

@@ -17,7 +17,7 @@ import numpy as np
 
 from ..core import validate as v
 from ..core.cases import G
-from ..core.errors import InputError, LeftOscillationError, NoReturnError, NumericalError
+from ..core.errors import InputError, LeftOscillationError, NoReturnError, NumericalError, UntrustedError
 from ..core.methods import Status, resolve
 from .dense import dense_crossing
 from .interpolation import InverseInterpolation, inverse_cubic, linear_zero
@@ -131,11 +131,13 @@ class PeriodSearch(Result):
     Attributes
     ----------
     status : Status
-        ``FOUND``, ``NO_RETURN``, ``LEFT_OSCILLATION``, ``TOO_EARLY`` or ``NODES_COINCIDE``
-        (``methods.Status``; the last where ``theta'`` moves in subnormal steps so coarse that
-        two of the five nodes ``z2`` of 3(d) are equal: no inverse cubic passes through them).
+        ``FOUND``, ``NO_RETURN``, ``LEFT_OSCILLATION``, ``TOO_EARLY``, ``NODES_COINCIDE`` or
+        ``UNTRUSTED`` (``methods.Status``; ``NODES_COINCIDE`` where ``theta'`` moves in subnormal
+        steps so coarse that two of the five nodes ``z2`` of 3(d) are equal: no inverse cubic
+        passes through them; ``UNTRUSTED`` where the simulation returns but cannot be trusted:
+        :func:`untrusted`).
     estimate : PeriodEstimate or None
-        The estimate where ``status`` is ``FOUND``.
+        The estimate where ``status`` is ``FOUND``, and the untrusted one where it is ``UNTRUSTED``.
     length, amplitude, step, g, t0, t_max : float
         The search's inputs (``t_max`` as used: :func:`default_t_max` when not given).
     method : str
@@ -155,6 +157,12 @@ class PeriodSearch(Result):
         ``LEFT_OSCILLATION``: ``t_(j+1)``, the first point with ``|theta| >= pi``.
     j : int or None
         The step index the kernel stopped at (None where it did not run).
+    max_energy_drift : float or None
+        Where it returns: the largest ``|E(z1_k, z2_k) - E(alpha, 0)|`` over the five points
+        around the return, ``E = theta'^2/2 - (g/l) cos(theta)`` (per unit ``m l^2``, 1/s^2).
+    separatrix_distance : float or None
+        Where it returns: ``E_sep - E(alpha, 0) = (g/l)(1 + cos(alpha)) = 2 (g/l) cos^2(alpha/2)``,
+        the energy that would take the pendulum over the top, in the same unit.
     """
 
     status: Status
@@ -172,6 +180,8 @@ class PeriodSearch(Result):
     moving_amplitude: float | None = None
     t_left: float | None = None
     j: int | None = None
+    max_energy_drift: float | None = None
+    separatrix_distance: float | None = None
 
     @property
     def found(self) -> bool:
@@ -252,7 +262,40 @@ def search_period(
         dense=float(dense),
     )
     common["estimate"] = est
-    return PeriodSearch(status, j=int(j), **common)
+    drift, distance = window_drift(z1w, z2w, alpha, c), separatrix_distance(alpha, c)
+    if untrusted(drift, distance, est.cubic, float(period)):
+        status = Status.UNTRUSTED
+    return PeriodSearch(status, j=int(j), max_energy_drift=drift, separatrix_distance=distance, **common)
+
+
+def separatrix_distance(alpha: float, c: float) -> float:
+    """``E_sep - E0 = (g/l)(1 + cos(alpha)) = 2 (g/l) cos^2(alpha/2)``, ``c = -g/l``: without the
+    cancellation of ``1 + cos(alpha)`` near pi."""
+    return float(-2 * c * math.cos(0.5 * alpha) ** 2)
+
+
+def window_drift(z1: Any, z2: Any, alpha: float, c: float) -> float:
+    """The largest ``|E(z1_k, z2_k) - E(alpha, 0)|`` over the points given, ``E = z2^2/2 + c cos(z1)``.
+
+    As ``z2^2/2 - 2 c sin((z1 + alpha)/2) sin((z1 - alpha)/2)`` (``cos A - cos B =
+    -2 sin((A + B)/2) sin((A - B)/2)``): ``z1 - alpha`` is exact near the return, where the
+    difference of two cosines near -1 would keep only its rounding.
+    """
+    z1, z2 = np.asarray(z1, dtype=float), np.asarray(z2, dtype=float)
+    d = 0.5 * z2 * z2 - 2 * c * np.sin(0.5 * (z1 + alpha)) * np.sin(0.5 * (z1 - alpha))
+    return float(np.max(np.abs(d)))
+
+
+#: The estimate is no longer the period's when it is this fraction of the period off.
+QUARTER = 0.25
+
+
+def untrusted(drift: Any, distance: Any, cubic: Any, period: Any) -> Any:
+    """Whether a return cannot be trusted: the energy error exceeds the distance to the
+    separatrix (the simulated orbit may lie on the other side of it, where the pendulum goes
+    round or takes any time to turn) or the estimate ``p(0)`` is more than :data:`QUARTER` of
+    the period off (the phase error exceeds a quarter period). Elementwise for arrays."""
+    return (drift > distance) | (np.abs(cubic - period) > QUARTER * period)
 
 
 def stuck(code: int, order: int, alpha: float, c: float, step: float) -> bool:
@@ -306,9 +349,12 @@ def estimate_period(
         a ``t_max`` that works).
     LeftOscillationError
         The discrete pendulum went over the top: the step is too large for the amplitude.
+    UntrustedError
+        It returns, but its energy error exceeds the distance to the separatrix or its
+        estimate is a quarter period off (:func:`untrusted`): a smaller step or a higher order.
     """
     s = search_period(length, amplitude, step, t_max, t0, g, method)
-    if s.estimate is not None:
+    if s.found and s.estimate is not None:
         return s.estimate
     raise search_error(s)
 
@@ -335,6 +381,18 @@ def search_error(s: PeriodSearch) -> NumericalError:
             f"the discrete pendulum went over the top (|theta| > pi) at t = {s.t_left:.6g} s: "
             f"step h = {step:g} is too large for amplitude {alpha:.6g} rad with method {s.method}; use a smaller step",
             t=s.t_left,
+        )
+    if s.status == Status.UNTRUSTED:
+        assert s.estimate is not None and s.max_energy_drift is not None and s.separatrix_distance is not None
+        if s.max_energy_drift > s.separatrix_distance:
+            why = (f"its energy error {s.max_energy_drift:.2g} 1/s^2 at the return exceeds the distance to the "
+                   f"separatrix (g/l)(1 + cos(alpha)) = {s.separatrix_distance:.2g} 1/s^2")
+        else:
+            why = f"its estimate is {abs(s.estimate.cubic - s.period) / s.period:.0%} of the period off"
+        return UntrustedError(
+            f"the simulation returns at p(0) = {s.estimate.cubic:.6g} s (period T = {s.period:.6g} s by the AGM (8)) "
+            f"but cannot be trusted near the separatrix: {why}; use a smaller step or a higher-order method",
+            max_energy_drift=s.max_energy_drift, separatrix_distance=s.separatrix_distance,
         )
     if s.status == Status.NODES_COINCIDE:
         return NumericalError(

@@ -82,7 +82,7 @@ class Estimate(_Model):
 
 #: The period search's outcome (``crossing.PeriodSearch.status``), or ``not_run`` where the
 #: search does not run (the period too long for the step, a pendulum at rest, a launch).
-SearchStatus = Literal["found", "no_return", "left_oscillation", "too_early", "nodes_coincide", "not_run"]
+SearchStatus = Literal["found", "no_return", "left_oscillation", "too_early", "nodes_coincide", "untrusted", "not_run"]
 
 
 class PeriodWithEstimate(PeriodAnswer):

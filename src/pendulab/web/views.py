@@ -80,7 +80,7 @@ def estimate_view(length: float, amplitude: float, step: float, g: float, method
         return {"estimate": None, "status": NOT_RUN,
                 "reason": "amplitude 0: released at rest at the bottom the pendulum does not move, so it has no period to find"}
     s = search_period(length, amplitude, step, g=g, method=method, period=period)
-    if s.estimate is None:
+    if not s.found or s.estimate is None:
         return {"estimate": None, "status": s.status.name.lower(), "reason": search_reason(s)}
     e = s.estimate.to_dict()
     mid = 0.5 * (e["bracket"][0] + e["bracket"][1])
@@ -107,6 +107,13 @@ def search_reason(s: PeriodSearch) -> str:
         return (f"amplitude {s.amplitude:.3g} rad is too small for a simulation in double precision: the first step's "
                 f"change of theta', about h (g/l) alpha = {k * s.step:.3g} x {s.amplitude:.3g} rad/s, rounds to zero, so the "
                 f"simulation never moves; use an amplitude above {s.moving_amplitude:.3g} rad or a larger step")
+    if s.status == Status.UNTRUSTED and s.estimate is not None and s.max_energy_drift is not None:
+        why = (f"its energy error {s.max_energy_drift:.2g} 1/s^2 at the return exceeds the distance to the separatrix "
+               f"(g/l)(1 + cos(alpha)) = {s.separatrix_distance:.2g} 1/s^2"
+               if s.max_energy_drift > (s.separatrix_distance or 0.0) else
+               f"its estimate is {abs(s.estimate.cubic - s.period) / s.period:.0%} of the period off")
+        return (f"the simulation returns at p(0) = {s.estimate.cubic:.6g} s (T = {s.period:.6g} s by the AGM (8)) but "
+                f"cannot be trusted near the separatrix: {why}; use a smaller step or a higher-order method")
     if s.status == Status.NODES_COINCIDE:
         return (f"theta' moves in subnormal steps at amplitude {s.amplitude:.3g} rad: two of the five values of theta' "
                 "around its sign change are equal, so no inverse cubic (3(d)) passes through them; use a larger amplitude")

@@ -25,7 +25,7 @@ class SweepResult(Result):
     Columns (all arrays of the same length): ``method`` (str), ``order``, ``step``,
     ``length``, ``amplitude`` (rad), ``period`` (AGM period (8), converged), ``status`` (one of
     :data:`STATUS`), ``steps`` (steps taken), ``linear``, ``cubic`` (period estimates; NaN
-    unless ``status == "found"``), ``linear_signed_error``, ``cubic_signed_error`` (``estimate - period``, signed),
+    unless ``status`` is ``"found"`` or ``"untrusted"``), ``linear_signed_error``, ``cubic_signed_error`` (``estimate - period``, signed),
     ``cubic_error_estimate`` (the interpolation error estimate of problem 3(d)); and ``g``
     (m/s^2), the same for every row.
     """
