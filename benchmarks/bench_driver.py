@@ -7,8 +7,7 @@ either at random), on the example group's pendulum (l = 2.0800838231 m, alpha = 
 - :func:`pendulab.engine.kernels.drive` (every step; one in 1000 kept; the explorer's CSV blocks
   from a carried state) against separate loops compiled here as they would be written
   without it: a plain loop, a thinning loop, the web's ``advance`` with its ``i % stride``
-  per step. These loops step through ``four_branches``, the branches of
-  :func:`pendulab.engine.kernels.step` written out here.
+  per step. These loops step through :func:`pendulab.engine.kernels.step`, as the driver does.
 
 Every pair is checked to give the same bits before it is timed. Ratios are ours/baseline
 times: below 1 is faster. Run: ``.venv/bin/python benchmarks/bench_driver.py [--quick]``.
@@ -24,16 +23,7 @@ import numpy as np
 from _peers import side_by_side
 from numba import njit
 
-from pendulab.engine.kernels import (
-    RK4,
-    TAYLOR2,
-    VERLET,
-    drive,
-    rk4_step,
-    taylor2_step,
-    taylor_step,
-    verlet_step,
-)
+from pendulab.engine.kernels import RK4, TAYLOR2, VERLET, drive, step
 
 G = 9.80665
 ALPHA, C = 4 * math.pi / 5, -G / 2.0800838231
@@ -41,23 +31,11 @@ REPEAT = 3 if "--quick" in sys.argv else 15
 
 
 # ------------------------------------------------------------------ the loops the driver replaces
-@njit(cache=True, nogil=True, inline="always")
-def four_branches(method, order, z1, z2, h, c):
-    """``pendulab.engine.kernels.step``'s branches, written out."""
-    if method == TAYLOR2:
-        return taylor2_step(z1, z2, h, c)
-    if method == RK4:
-        return rk4_step(z1, z2, h, c)
-    if method == VERLET:
-        return verlet_step(z1, z2, h, c)
-    return taylor_step(order, z1, z2, h, c)
-
-
 @njit(cache=True, nogil=True)
 def plain_loop(method, order, alpha, c, h, z1, z2):
     a, b = alpha, 0.0
     for i in range(len(z1)):
-        a, b = four_branches(method, order, a, b, h, c)
+        a, b = step(method, order, a, b, h, c)
         z1[i] = a
         z2[i] = b
 
@@ -68,7 +46,7 @@ def thinning_loop(method, order, alpha, c, h, n, stride, z1, z2):
     k = 0
     keep = stride
     for i in range(1, n + 1):
-        a, b = four_branches(method, order, a, b, h, c)
+        a, b = step(method, order, a, b, h, c)
         if i == keep or i == n:  # noqa: SIM109
             z1[k] = a
             z2[k] = b
@@ -80,7 +58,7 @@ def thinning_loop(method, order, alpha, c, h, n, stride, z1, z2):
 def modulo_loop(method, order, z1, z2, c, h, i0, i1, stride, n, out1, out2, out_i):
     k = 0
     for i in range(i0 + 1, i1 + 1):
-        z1, z2 = four_branches(method, order, z1, z2, h, c)
+        z1, z2 = step(method, order, z1, z2, h, c)
         if i % stride == 0 or i == n:
             out1[k] = z1
             out2[k] = z2

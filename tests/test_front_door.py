@@ -12,6 +12,7 @@ import pytest
 
 from pendulab.cli import SECTIONS, LazyGroup, cli, main
 from reference import EXAMPLE_LENGTH
+from test_glossary import json_keys
 
 ROOT = Path(__file__).resolve().parents[1]
 README = ROOT / "README.md"
@@ -319,16 +320,6 @@ def test_result_arrays_cannot_be_made_writeable_again():
             arr[0] = 0.0
 
 
-def _keys(doc):
-    if isinstance(doc, dict):
-        for k, v in doc.items():
-            yield k
-            yield from _keys(v)
-    elif isinstance(doc, list):
-        for v in doc:
-            yield from _keys(v)
-
-
 @pytest.mark.parametrize("args", [
     ["period", "--iterations", "7"], ["estimate", "--step", "1e-2,1e-3"], ["quadrature", "--substitution", "--n", "10,100"],
     ["fit"], ["newton"], ["gravity"], ["length", "262", "407", "634"],
@@ -336,7 +327,7 @@ def _keys(doc):
 def test_no_json_key_exact_names_a_period(cli_run, args):
     res = cli_run(*args, "--json")
     assert res.code == 0, res.err
-    keys = set(_keys(json.loads(res.out)))
+    keys = set(json_keys(json.loads(res.out)))
     assert "exact" not in keys  # the glossary's names: period, t_hat, period_as_written
     assert keys & {"period", "t_hat", "length_text", "g", "alpha"}, keys
 

@@ -75,14 +75,15 @@ def result_names() -> dict[str, set[str]]:
     return names
 
 
-def _keys(doc):
+def json_keys(doc):
+    """Every key of a JSON document, at any depth (test_front_door.py uses it too)."""
     if isinstance(doc, dict):
         for k, v in doc.items():
             yield k
-            yield from _keys(v)
+            yield from json_keys(v)
     elif isinstance(doc, list):
         for v in doc:
-            yield from _keys(v)
+            yield from json_keys(v)
 
 
 def _is_number(text: str) -> bool:
@@ -111,7 +112,7 @@ def json_names(tmp_path_factory) -> dict[str, set[str]]:
     names: dict[str, set[str]] = {}
     for args in runs:
         out = _run_json(args)
-        for key in _keys(out):
+        for key in json_keys(out):
             if not _is_number(key):
                 names.setdefault(key, set()).add(args[0])
     return names

@@ -28,12 +28,18 @@ TINY = 2.2250738585072014e-308
 MAX_PERIOD = 1e300
 
 
+def as_float(value: Any) -> float:
+    """``float(value)``, or NaN where it has none (a string that is not a number, ``None``):
+    each validator then refuses it with its own range."""
+    try:
+        return float(value)
+    except (TypeError, ValueError, OverflowError):
+        return math.nan
+
+
 def positive(name: str, value: Any) -> float:
     """A finite number > 0 (a length, a step, g), not a subnormal double."""
-    try:
-        x = float(value)
-    except (TypeError, ValueError, OverflowError):
-        x = math.nan
+    x = as_float(value)
     if not (math.isfinite(x) and x > 0):
         raise InputError(name, value, "a finite number > 0")
     if x < TINY:
@@ -41,12 +47,15 @@ def positive(name: str, value: Any) -> float:
     return x
 
 
+def pendulum(length: Any, alpha: Any, g: Any) -> tuple[float, float, float]:
+    """``(l, alpha, g)`` checked in that order: :func:`positive` ``length`` and ``g``, an
+    :func:`amplitude` (the argument named ``amplitude`` in a message)."""
+    return positive("length", length), amplitude("amplitude", alpha), positive("g", g)
+
+
 def non_negative(name: str, value: Any) -> float:
     """A finite number >= 0 (a measurement error)."""
-    try:
-        x = float(value)
-    except (TypeError, ValueError, OverflowError):
-        x = math.nan
+    x = as_float(value)
     if not (math.isfinite(x) and x >= 0):
         raise InputError(name, value, "a finite number >= 0")
     return x
@@ -54,10 +63,7 @@ def non_negative(name: str, value: Any) -> float:
 
 def amplitude(name: str, value: Any) -> float:
     """An amplitude in radians, ``0 <= alpha < pi`` (spec, Introduction)."""
-    try:
-        x = float(value)
-    except (TypeError, ValueError, OverflowError):
-        x = math.nan
+    x = as_float(value)
     if not (math.isfinite(x) and 0.0 <= x < math.pi):
         raise InputError(name, value, "an angle in [0, pi) rad")
     return x

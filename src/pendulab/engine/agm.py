@@ -196,6 +196,25 @@ def dd_div(ah, al, bh, bl):
 
 
 @_inline
+def last_step(a, ea, b, eb, th, tl):
+    """``T = T0 / M(a, b)`` in double-double from the AGM's last pair ``a + ea, b + eb`` (close
+    together) and ``T0 = th + tl``: the scalar and the array kernels' one last step."""
+    # M = A (1 - x/4 - 5 x^2/64 + O(x^3)): the AGM's own series for a ~ b
+    # (one step of (7), then M(1, 1 - e) = 1 - e/2 - e^2/16 - ...).
+    s, es = two_sum(a, b)
+    inv_s = 1.0 / s
+    t = ((a - b) + (ea - eb)) * inv_s
+    x = t * t
+    mh, ml = two_sum(0.5 * s, -0.5 * s * (x * (0.25 + x * (5.0 / 64.0))))
+    ml += 0.5 * (es + (ea + eb))
+    # T = T0 / M: q = T0 * (1/M), 1/M = (2/s)(1 + x/4 + O(x^2)) within 2^-51,
+    # corrected by the residual T0 - q M (error of the correction: 2^-51 * 2^-51).
+    inv = (2.0 * inv_s) * (1.0 + 0.25 * x)
+    q = th * inv
+    return fast_two_sum(q, (fma(-q, mh, th) + (tl - q * ml)) * inv)
+
+
+@_inline
 def half_angle_cos(alpha):
     """``b0 = cos(alpha/2) = sin(y)``, ``y = (pi - alpha)/2``, for ``0 <= alpha < pi``, as a
     double-double with a relative error below 2^-89.
@@ -293,16 +312,7 @@ def period_dd(alpha, length, g):
         r = math.sqrt(p)
         a, ea = 0.5 * s, 0.5 * (es + (ea + eb))
         b, eb = r, (fma(-r, r, p) + ep) / (2.0 * r)
-    # M and T = T0 / M as in agm_periods_dd's last loop.
-    s, es = two_sum(a, b)
-    inv_s = 1.0 / s
-    t = ((a - b) + (ea - eb)) * inv_s
-    x = t * t
-    mh, ml = two_sum(0.5 * s, -0.5 * s * (x * (0.25 + x * (5.0 / 64.0))))
-    ml += 0.5 * (es + (ea + eb))
-    inv = (2.0 * inv_s) * (1.0 + 0.25 * x)
-    q = th * inv
-    return fast_two_sum(q, (fma(-q, mh, th) + (tl - q * ml)) * inv)
+    return last_step(a, ea, b, eb, th, tl)
 
 
 @_jit
@@ -388,22 +398,9 @@ def agm_periods_dd(alpha, lengths, g, out, lo, hard):
                 w[EB + k] = (fma(-r, r, p) + ep) * (0.5 * y)
         nfail = 0
         for k in range(B):
-            # M = A (1 - x/4 - 5 x^2/64 + O(x^3)): the AGM's own series for a ~ b
-            # (one step of (7), then M(1, 1 - e) = 1 - e/2 - e^2/16 - ...).
-            a, ea, b, eb = w[A + k], w[EA + k], w[BB + k], w[EB + k]
-            s, es = two_sum(a, b)
-            inv_s = 1.0 / s
-            t = ((a - b) + (ea - eb)) * inv_s
-            x = t * t
-            mh, ml = two_sum(0.5 * s, -0.5 * s * (x * (0.25 + x * (5.0 / 64.0))))
-            ml += 0.5 * (es + (ea + eb))
-            # T = T0 / M: q = T0 * (1/M), 1/M = (2/s)(1 + x/4 + O(x^2)) within 2^-51,
-            # corrected by the residual T0 - q M (error of the correction: 2^-51 * 2^-51).
             th = s0h if shared else w[TH + k]
             tl = s0l if shared else w[TL + k]
-            inv = (2.0 * inv_s) * (1.0 + 0.25 * x)
-            q = th * inv
-            ph, pl = fast_two_sum(q, (fma(-q, mh, th) + (tl - q * ml)) * inv)
+            ph, pl = last_step(w[A + k], w[EA + k], w[BB + k], w[EB + k], th, tl)
             # Round: th + tl +- ERROR_BOUND th must all round to the same double.
             err = ERROR_BOUND * ph
             ok = (ph + (pl + err) == ph) & (ph + (pl - err) == ph) & (ph > 1e-290) & (ph < 1e290)

@@ -66,6 +66,19 @@ def verlet_step(z1, z2, h, c):
     return z1_next, z2_half + 0.5 * h * c * sin(z1_next)
 
 
+@njit(cache=True, nogil=True, inline="always")
+def taylor_sums(x, p, h):
+    """``(sum_{k<=p} x_k h^k, sum_{k<=p+1} k x_k h^(k-1))`` by Horner's rule: the state after a
+    step of the Taylor method of order ``p`` from the coefficients ``x`` of ``theta``."""
+    z1_next = x[p]
+    for k in range(p - 1, -1, -1):
+        z1_next = z1_next * h + x[k]
+    z2_next = (p + 1) * x[p + 1]
+    for k in range(p, 0, -1):
+        z2_next = z2_next * h + k * x[k]
+    return z1_next, z2_next
+
+
 @njit(cache=True, nogil=True)  # not inlined: its scratch arrays stay out of the other methods' loops
 def taylor_step(p, z1, z2, h, c):
     """One step of the Taylor method of order ``p``: the generalisation of (3).
@@ -97,13 +110,7 @@ def taylor_step(p, z1, z2, h, c):
         S[k] = sk / k
         C[k] = ck / k
         x[k + 2] = c * S[k] / ((k + 1) * (k + 2))
-    z1_next = x[p]  # Horner's rule
-    for k in range(p - 1, -1, -1):
-        z1_next = z1_next * h + x[k]
-    z2_next = (p + 1) * x[p + 1]
-    for k in range(p, 0, -1):
-        z2_next = z2_next * h + k * x[k]
-    return z1_next, z2_next
+    return taylor_sums(x, p, h)
 
 
 @njit(cache=True, nogil=True, inline="always")
@@ -208,13 +215,7 @@ def taylor_damped_step(p, z1, z2, h, c, gamma, beta):
         for j in range(0, k + 1):
             q += (j + 1) * x[j + 1] * (k - j + 1) * x[k - j + 1]
         x[k + 2] = (c * S[k] - gamma * (k + 1) * x[k + 1] - beta * sign * q) / ((k + 1) * (k + 2))
-    z1_next = x[p]  # Horner's rule
-    for k in range(p - 1, -1, -1):
-        z1_next = z1_next * h + x[k]
-    z2_next = (p + 1) * x[p + 1]
-    for k in range(p, 0, -1):
-        z2_next = z2_next * h + k * x[k]
-    return z1_next, z2_next
+    return taylor_sums(x, p, h)
 
 
 @njit(cache=True, nogil=True, inline="always")

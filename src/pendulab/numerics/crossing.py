@@ -205,9 +205,7 @@ def search_period(
     input raises :class:`InputError`, and an outcome without a period (no return, over the
     top) is :attr:`PeriodSearch.status`.
     """
-    length = v.positive("length", length)
-    alpha = v.amplitude("amplitude", amplitude)
-    g = v.positive("g", g)
+    length, alpha, g = v.pendulum(length, amplitude, g)
     step = v.positive("step", step)
     t0 = v.finite("t0", t0)
     if alpha == 0:

@@ -254,9 +254,7 @@ def exact_motion(length: float, amplitude: float, t: ArrayLike, g: float = G) ->
     Accurate to ``16 eps + 2^-100 omega0 |t|`` rad (:func:`exact_motion_error_bound`):
     a few ulps of ``theta`` at any time, the phase ``t/T`` being exact to 2^-104.
     """
-    length = v.positive("length", length)
-    alpha = v.amplitude("amplitude", amplitude)
-    g = v.positive("g", g)
+    length, alpha, g = v.pendulum(length, amplitude, g)
     t = np.asarray(t, dtype=float)
     if not np.all(np.isfinite(t)):
         v.finite("t", t[~np.isfinite(t)].flat[0])
@@ -301,9 +299,7 @@ def exact_motion_error_bound(length: Any, amplitude: Any, t: Any, g: Any = G) ->
     ``mpmath.ellipfun`` at 60 digits finds at most the share of this bound that
     ``docs/accuracy.md`` prints; ``tests/test_bounds_adversarial.py`` runs it small.
     """
-    length = v.positive("length", length)
-    v.amplitude("amplitude", amplitude)  # checked; the bound holds for every amplitude
-    g = v.positive("g", g)
+    length, _, g = v.pendulum(length, amplitude, g)  # the bound holds for every amplitude
     w0 = math.sqrt(g / length)
     scale = ERROR_BOUND_FACTOR * _EPS + PHASE_ERROR * w0 * np.abs(np.asarray(t, dtype=float))
     return scale, w0 * scale

@@ -272,9 +272,7 @@ def quadrature_period(length, amplitude, n: int, g=G, substitution: bool = False
     measured, by an adversarial search over amplitudes (``benchmarks/adversarial.py``,
     ``quadrature_search``; ``docs/accuracy.md``).
     """
-    length = v.positive("length", length)
-    alpha = v.amplitude("amplitude", amplitude)
-    g = v.positive("g", g)
+    length, alpha, g = v.pendulum(length, amplitude, g)
     v.period_scale(length, g)  # refuses a period beyond the doubles, naming length or g
     n = v.integer("n", n, 1, MAX_N)
     if alpha == 0:

@@ -143,9 +143,7 @@ def simulate(
     -------
     Trajectory
     """
-    length = v.positive("length", length)
-    alpha = v.amplitude("amplitude", amplitude)
-    g = v.positive("g", g)
+    length, alpha, g = v.pendulum(length, amplitude, g)
     t0, t_max, step = v.time_span(t0, t_max, step)
     code, order = method_code(method)
     stride = v.integer("stride", stride, 1)
