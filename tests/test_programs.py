@@ -57,8 +57,9 @@ def written(tmp_path_factory):
 
 
 def run(folder, name, *args):
+    # Run beside the folder: plots.py writes its figures into the working folder.
     done = subprocess.run([sys.executable, "-c", BOOT, str(folder / name), *map(str, args)],
-                          capture_output=True, text=True, timeout=120, check=False)
+                          capture_output=True, text=True, timeout=120, check=False, cwd=folder.parent)
     assert done.returncode == 0, done.stderr
     return done.stdout
 
@@ -76,6 +77,8 @@ def test_programs_are_plain_short_and_commented():
         imported = {a.name.split(".")[0] for n in ast.walk(tree) if isinstance(n, ast.Import) for a in n.names}
         imported |= {n.module.split(".")[0] for n in ast.walk(tree) if isinstance(n, ast.ImportFrom)}
         allowed = {"math", "sys", "decimal", "numpy", "scipy", "mpmath", "agm", "taylor", "length", "digits"}
+        if name == "plots.py":  # the figures: matplotlib, on the problems' own data
+            allowed |= {"matplotlib", "problem3", "problem4", "problem5"}
         assert imported <= allowed, (name, imported - allowed)
         assert ast.get_docstring(tree), name
         assert max(len(line) for line in text.splitlines()) <= 88, name  # no line wraps in the report
@@ -87,6 +90,7 @@ def test_each_program_runs_without_pendulab(written, students):
     for name in coursework.PROGRAMS:
         if name != "digits.py":  # the shared printing rule: it has nothing of its own to print
             assert run(written, name, *students).strip(), name
+    assert {p.name for p in written.parent.glob("R?.png")} == {f"R{k}.png" for k in range(1, 6)}  # plots.py
     out = run(written, "problem3.py", *students)
     r = problems.problem3(tuple(students))
     assert f"l = {r.group.length_text} m, T^ = {r.t_hat:.15g} s" in out

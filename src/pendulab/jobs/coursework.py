@@ -5,7 +5,8 @@ with the standard library, numpy, scipy and mpmath only, never this package: the
 runs them for its coursework numbers and prints them whole, ``pendulab programs`` writes
 them out, and the tests check the engine against them. Each runs as ``python FILE
 [STUDENT ...]`` from the folder that holds them all (a problem's program imports the
-shared methods ``agm``, ``taylor``, ``length`` and ``digits`` beside it).
+shared methods ``agm``, ``taylor``, ``length`` and ``digits`` beside it; ``plots.py``, with
+matplotlib, imports the problems' programs and draws the report's figures).
 
 The Portuguese set differs from the English one in its comments and docstrings only:
 ``programs/pt.json`` maps each such English line to its translation.
@@ -25,7 +26,7 @@ from ..core.errors import InputError
 
 #: The programs in the order the report prints them: shared methods first.
 PROGRAMS = ("digits.py", "length.py", "agm.py", "taylor.py", "problem1.py", "problem2.py", "problem3.py",
-            "problem4.py", "problem5.py")
+            "problem4.py", "problem5.py", "plots.py")
 #: How to run each one (the appendix's header line).
 USAGE = {
     "digits.py": "(imported by the problems' programs)",
@@ -37,6 +38,7 @@ USAGE = {
     "problem3.py": "python problem3.py [STUDENT ...]",
     "problem4.py": "python problem4.py",
     "problem5.py": "python problem5.py",
+    "plots.py": "python plots.py [STUDENT ...]",
 }
 LANGUAGES = ("en", "pt")
 #: The words of :data:`USAGE` in each language other than English.

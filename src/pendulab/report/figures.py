@@ -1,4 +1,4 @@
-"""The report's figure style and reproducible SVG output; the drawing is :mod:`pendulab.plots`'s.
+"""The report's figure style and reproducible SVG output; the drawing is ``programs/plots.py``'s.
 
 Every figure is a :class:`matplotlib.figure.Figure` made and saved inside
 ``matplotlib.rc_context(STYLE)``: the report never touches the global matplotlib state
@@ -38,16 +38,21 @@ STYLE: Any = {
     "axes.unicode_minus": True,
 }
 
-#: The figures' formulas as plain Unicode text, the same in every language: a label in
-#: mathtext would load and run its parser (a fifth of the figures' time). The words of
-#: each language come from the catalogue.
+#: The figures' formulas as plain Unicode text, the same in every language, under the
+#: names of ``programs/plots.py``'s ``WORDS``: a label in mathtext would load and run its
+#: parser (a fifth of the figures' time). The words of each language come from the catalogue.
 LABELS = {
-    "time": {"y": "z₁,ⱼ ≈ θ(tⱼ) (rad)"},
-    "phase": {"x": "z₁ ≈ θ (rad)", "y": "z₂ ≈ θ′ (rad/s)", "P": "P = (α, 0)"},
-    "fit": {"y": "z₁,ⱼ, φ̃(t) (rad)", "fit": "φ̃"},
-    "residual": {"y": "z₁,ⱼ − φ̃(tⱼ) (rad)"},
-    "convergence": {"x": "n", "guide": "∝ 1/√n"},
+    "t": "t (s)", "z1j": "z₁,ⱼ ≈ θ(tⱼ) (rad)", "z1": "z₁ ≈ θ (rad)", "z2": "z₂ ≈ θ′ (rad/s)",
+    "P": "P = (α, 0)", "fit": "φ̃", "fit_y": "z₁,ⱼ, φ̃(t) (rad)", "dev": "z₁,ⱼ − φ̃(tⱼ) (rad)",
+    "n": "n", "guide": "∝ 1/√n",
 }
+
+
+def words(catalogue: dict[str, Any]) -> dict[str, str]:
+    """The figures' labels in the catalogue's language: :data:`LABELS` and its words."""
+    return LABELS | {"data": catalogue["p4.fig.data"], "rule": catalogue["p5.fig.plain"],
+                     "error": catalogue["p5.fig.error"]}
+
 
 _SUPERSCRIPT = str.maketrans("0123456789-", "⁰¹²³⁴⁵⁶⁷⁸⁹⁻")
 

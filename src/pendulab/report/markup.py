@@ -65,16 +65,6 @@ def sci_beside(x: float, limit: float, n: int = 2) -> str:
     return sci(x, 17)
 
 
-def distinct(a: float, b: float, n: int = 16) -> tuple[str, str]:
-    """``a`` and ``b`` with the fewest significant digits (at least ``n``, at most 17)
-    from which each reads back as its own double: two different doubles never print the
-    same digits."""
-    for d in range(n, 17):
-        if float(f"{a:.{d}g}") == a and float(f"{b:.{d}g}") == b:
-            return _g(a, d), _g(b, d)
-    return _g(a, 17), _g(b, 17)
-
-
 def _g(x: float, n: int) -> str:
     """``x`` to ``n`` significant digits, the shortest text (``g``: no trailing zeros)."""
     text = f"{x:.{n}g}"

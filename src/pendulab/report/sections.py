@@ -4,9 +4,9 @@ and figures to the Doc.
 The coursework's numbers come from the programs of :mod:`pendulab.jobs.coursework` (the files
 the appendix prints whole), run here for this group; the engine (:mod:`pendulab.jobs.problems`,
 :mod:`pendulab.numerics.period`) adds what goes beyond the coursework (certified digits, the exact
-motion, the substituted integral, the SVD fit) and draws the figures of problems 4 and 5
-from its own results, which the tests check against the programs. A section decides no
-answer of its own: it picks the catalogue's words for what the programs printed.
+motion, the substituted integral, the SVD fit); ``plots.py`` draws every figure from the
+programs' data. A section decides no answer of its own: it picks the catalogue's words
+for what the programs printed.
 """
 from __future__ import annotations
 
@@ -16,7 +16,7 @@ from decimal import ROUND_FLOOR, Decimal
 from typing import Any
 
 from .document import Doc
-from .markup import distinct, err, fixed, integer, num, sci, sci_beside, sci_up, shown, up
+from .markup import err, fixed, integer, num, sci, sci_beside, sci_up, shown, up
 
 
 def programs() -> dict[str, Any]:
@@ -50,12 +50,9 @@ def agm(doc: Doc, students: Sequence[int]) -> None:
 
     limit = period.fixed_iterations_limit()
     gap = float(mpmath.pi - mpmath.mpf(limit))
-    t_hat_text, tc_text = distinct(t_hat, tc)  # never the same digits beside "N ulp from"
     ulps = round(abs(t_hat - tc) / math.ulp(tc))
     doc.set(**{
         "agm.l": l_text,
-        "agm.t_hat": t_hat_text,
-        "agm.tc": tc_text,
         "agm.mp": digits,
         "agm.diff": integer(ulps),
         "agm.ulps7": integer(period.FIXED_ITERATIONS_ULPS),
@@ -135,15 +132,10 @@ def problem2(doc: Doc, students: Sequence[int]) -> None:
 
 # ----------------------------------------------------------------------------- problem 3
 def problem3(doc: Doc, students: Sequence[int]) -> None:
-    import numpy as np
-
-    from ..core.cases import G
-    from ..numerics.simulation import Trajectory
-    from ..plots.simulation import phase_portrait, time_series
-    from .figures import LABELS
+    from .figures import words
 
     p = programs()
-    p3, taylor = p["problem3.py"], p["taylor.py"]
+    p3, taylor, plots = p["problem3.py"], p["taylor.py"], p["plots.py"]
 
     # 3(a): the table of Figure 3, first and last four rows.
     t, z1, z2 = taylor.taylor(1.0, math.pi / 4, 0.1, 2.1)
@@ -189,10 +181,11 @@ def problem3(doc: Doc, students: Sequence[int]) -> None:
         doc.choose("p3b.bracket", outcome)
     if outcome == "leaves":
         doc.set(**{"p3b.left": num(ts[over], 6), "p3b.ratio": num(ts[over] / t_hat, 3)})
+    # Figures R1 and R2, drawn by plots.py from the run on [0, t_max].
     t, z1, z2 = taylor.taylor(length, p3.ALPHA, h, t_max)
-    plot = Trajectory(np.array(t), np.array(z1), np.array(z2), length, p3.ALPHA, G, h, 0.0)
-    doc.figure("p3b_time", lambda ax: time_series(plot, ax, title=False, labels=LABELS["time"]))
-    doc.figure("p3b_phase", lambda ax: phase_portrait(plot, ax, labels=LABELS["phase"]))
+    w = words(doc.catalogue)
+    doc.figure("p3b_time", lambda ax: plots.figure1(ax, t, z1, w))
+    doc.figure("p3b_phase", lambda ax: plots.figure2(ax, z1, z2, p3.ALPHA, w))
 
     # 3(c): the period against the step.
     estimates = [p3.period(length, step, t_hat) for step in p3.STEPS]
@@ -271,11 +264,10 @@ def problem4(doc: Doc, students: Sequence[int]) -> None:
 
     from ..core.cases import PROBLEM4_ALT_T_MAX
     from ..jobs import problems
-    from ..plots.problems import fit, fit_residuals
-    from .figures import LABELS
+    from .figures import words
 
     p = programs()
-    p4, taylor = p["problem4.py"], p["taylor.py"]
+    p4, taylor, plots = p["problem4.py"], p["taylor.py"], p["plots.py"]
     t_hat = p["agm.py"].t_hat(p4.L, p4.ALPHA)
     fits = {}
     for t_max in (math.ceil(t_hat), PROBLEM4_ALT_T_MAX):
@@ -284,11 +276,11 @@ def problem4(doc: Doc, students: Sequence[int]) -> None:
         j = int(np.argmax(np.abs(res)))
         low, high, cond, moved, svd = p4.checks(t, z1, a)
         fits[t_max] = {"t": t, "z1": z1, "z2": z2, "a": a, "r": rhs, "diag": diag, "coef": coef, "t_max": t_max,
-                       "ssd": math.fsum(res**2), "maxdev": abs(res[j]), "argmax": t[j],
+                       "res": res, "ssd": math.fsum(res**2), "maxdev": abs(res[j]), "argmax": t[j],
                        "low": low, "high": high, "cond": cond, "moved": moved, "svd": svd}
     main, other = fits[math.ceil(t_hat)], fits[PROBLEM4_ALT_T_MAX]
     # Beyond the coursework, from the engine on the program's data: the eigenvalues, the
-    # rounding's effect, the SVD solution, the exact motion between the data points; the figures.
+    # rounding's effect, the SVD solution, the exact motion between the data points.
     r = problems.problem4(taylor_data=(main["t"], main["z1"], main["z2"]))
     alt = problems.problem4(t_max=PROBLEM4_ALT_T_MAX, taylor_data=(other["t"], other["z1"], other["z2"]))
     n = len(main["t"]) - 1
@@ -316,39 +308,29 @@ def problem4(doc: Doc, students: Sequence[int]) -> None:
     doc.choose("p4d.ii", "yes" if main["maxdev"] < p4.TOL else "no")
     doc.set(**{"p4.answer": doc.word("answers.yes" if main["maxdev"] < p4.TOL else "answers.no")})
     doc.choose("p4.alt", "yes" if other["maxdev"] < p4.TOL else "no")
-    w = doc.catalogue
-    doc.figure("p4d_fit", lambda ax: fit(r, ax, title=False, labels=LABELS["fit"] | {"data": w["p4.fig.data"]}))
-    doc.figure("p4d_residual", lambda ax: fit_residuals(r, ax, labels=LABELS["residual"]))
+    w = words(doc.catalogue)  # figures R3 and R4, drawn by plots.py from the program's fit
+    doc.figure("p4d_fit", lambda ax: plots.figure3(ax, main["t"], main["z1"], main["coef"], w))
+    doc.figure("p4d_residual", lambda ax: plots.figure4(ax, main["t"], main["res"], p4.TOL, w))
 
 
 # ----------------------------------------------------------------------------- problem 5
 def problem5(doc: Doc, students: Sequence[int]) -> None:
     from ..jobs import problems
-    from ..plots.problems import GUIDE_OFFSET, quadrature_convergence
-    from .figures import LABELS
+    from .figures import words
 
-    p5 = programs()["problem5.py"]
+    p5, plots = programs()["problem5.py"], programs()["plots.py"]
     t_hat = programs()["agm.py"].t_hat(p5.L, p5.ALPHA)
     table = p5.table(t_hat)  # (n, period by S_n, error, rate) for n = 1, 10, ..., 10^5
-    # Beyond the coursework, from the engine: the substituted integral; the figure.
+    # Beyond the coursework, from the engine: the substituted integral.
     r = problems.problem5()
     sub = {row.n: row for row in r.rows}
     doc.tables["p5d"] = [[
         integer(n), err(period, p5.rounding_error(n)), sci(error, 3), fixed(rate, 4),
         num(sub[n].substitution_estimate, 15), sci(sub[n].substitution_error, 2),
     ] for n, period, error, rate in table[1:]]
-    w = doc.catalogue
-
-    def convergence(ax):
-        from matplotlib.ticker import NullLocator
-
-        quadrature_convergence(r, ax, labels=LABELS["convergence"] | {
-            "plain": w["p5.fig.plain"], "sub": w["p5.fig.sub"], "y": w["p5.fig.error"]})
-        # n = 1, 10, ..., 10^5: minor ticks between the powers of ten would mark no point
-        # (and would be most of the figure's ticks, each a few artists to draw).
-        ax.xaxis.set_minor_locator(NullLocator())
-
-    doc.figure("p5d_conv", convergence, height=6.2 / 2.54)
+    w = words(doc.catalogue)  # figure R5, drawn by plots.py from the program's table
+    doc.figure("p5d_conv", lambda ax: plots.figure5(ax, [row[0] for row in table[1:]], [row[2] for row in table[1:]], w),
+               height=6.2 / 2.54)
     single, ten, last = table[0], table[1], table[-1]
     conv = r.substitution_converged_n
     doc.set(**{
@@ -361,7 +343,7 @@ def problem5(doc: Doc, students: Sequence[int]) -> None:
         "p5.subbest": "—" if conv is None else sci(sub[conv].substitution_error, 1),
         "p5.subn": "—" if conv is None else integer(conv),
         "p5.sub10": sci(sub[10].substitution_error, 2),
-        "p5.offset": num(GUIDE_OFFSET, 2),
+        "p5.offset": num(plots.GUIDE, 2),
     })
     doc.choose("p5.sub", "converged" if conv is not None else "not_converged")
 
