@@ -59,7 +59,7 @@ from . import guard, limits, models, views
 
 STATIC = Path(__file__).parent / "static"
 _log = logging.getLogger("pendulab.web")
-_PAGES = {"index.html": "text/html", "app.js": "text/javascript", "style.css": "text/css", "favicon.svg": "image/svg+xml"}
+_PAGES = {"index.html": "text/html", "app.js": "text/javascript", "lab.js": "text/javascript", "style.css": "text/css", "favicon.svg": "image/svg+xml"}
 
 
 #: plotly.js's partial bundle "basic" (npm ``plotly.js-basic-dist-min`` 4.1.1, MIT licence in

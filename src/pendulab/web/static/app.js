@@ -1,8 +1,9 @@
 // pendulab explorer: the page reads its state from the URL, asks the JSON API, and draws.
 // Every number about the pendulum comes from /api/; the page only draws it. Between two of
 // the server's animation samples the bob's angle is the cubic Hermite interpolant of theta
-// and theta' there (drawing only; the server sends 16 samples a period). The photogate times
-// the animation as a stopwatch would: the times at which the drawn bob crosses the bottom.
+// and theta' there (drawing only; the server sends 16 samples a period). The lab's instruments
+// (photogates, stopwatch, ruler, protractor, vectors, damping, Planet X) are static/lab.js,
+// called through window.lab: on each query, on new data, each frame and each drawing.
 "use strict";
 
 const FIELDS = ["length", "amplitude", "unit", "g", "omega0", "method", "step", "t_max", "method2", "step2", "length2", "amplitude2", "g2"];
@@ -33,7 +34,6 @@ let curve = null;                                 // /api/period_curve, asked on
 let seq = 0;                                      // drops answers to requests that are no longer current
 let timer = null;
 const anim = { playing: true, t: 0, last: null, speed: 1, marks: 0, drag: null };
-const gate = { prev: null, passes: [], period: null };
 
 // ---------- words: the catalogues' web. entries (/api/config?lang=), numbers in the language's form ----------
 function pickLanguage() {
@@ -126,6 +126,7 @@ function pageQuery() {
   if (view.side < 0) q.set("side", "left");
   if (!anim.playing) { q.set("paused", "1"); q.set("t", String(Number(anim.t.toPrecision(6)))); }
   if (langGiven) q.set("lang", lang);
+  if (window.lab) window.lab.query(q, "url");
   return q.toString();
 }
 
@@ -146,15 +147,18 @@ function apiQuery(which, extra = {}, withWords = true) {
   });
   if (withWords) q.set("lang", lang);  // the flags' words; the CSV has none
   if (state.omega0) q.set("omega0", state.omega0);
+  if (window.lab) window.lab.query(q, which);  // damping, drag, mass; Planet X's g
   return q.toString();
 }
 
 function secondQuery() {
   // The second pendulum: its own length, amplitude (in the first one's unit) and g; empty ones are the first's.
-  return new URLSearchParams({
+  const q = new URLSearchParams({
     length: state.length2 || state.length, amplitude: state.amplitude2 || state.amplitude, unit: state.unit,
     g: state.g2 || state.g, t_max: state.t_max, lang,
-  }).toString();
+  });
+  if (window.lab) window.lab.query(q, "second");
+  return q.toString();
 }
 
 // ---------- talking to the API ----------
@@ -218,7 +222,7 @@ async function update() {
   const tEnd = s.frames.t[s.frames.t.length - 1];
   if (anim.t > tEnd) anim.t = 0;
   $("cursor").max = String(tEnd);
-  resetGate();
+  if (window.lab) window.lab.data();
   renderFlags();
   renderPeriods();
   tick();
@@ -761,37 +765,6 @@ function renderAnimNote() {
     : `The swing is faster than the animation can show (${f.per_period.toPrecision(2)} samples a period): it jumps between the simulation's states at their times.`;
 }
 
-// ---------- photogate: the times at which the drawn bob of the first pendulum crosses the bottom ----------
-function resetGate() { gate.prev = null; gate.passes = []; gate.period = null; showGate(); }
-
-function photogate(t, theta) {
-  const prev = gate.prev;
-  gate.prev = theta === null ? null : { t, theta };
-  if (!prev || theta === null) return;
-  if (t <= prev.t || t - prev.t > 0.25) { gate.passes = []; return; }  // a jump or a wrap: start again
-  // The beam is at the bottom, theta = 0 modulo a turn: the multiple of 2 pi between the two frames.
-  const turn = 2 * Math.PI, b = turn * Math.round((prev.theta + theta) / 2 / turn);
-  const p0 = prev.theta - b, p1 = theta - b;
-  if ((p0 < 0) === (p1 < 0) || p0 === p1 || Math.abs(p0) > 1.5 || Math.abs(p1) > 1.5) return;
-  const tc = prev.t + (t - prev.t) * p0 / (p0 - p1);  // linear between the two drawn frames
-  const dir = p1 > p0 ? 1 : -1;
-  // One period between two passes the same way (every second pass of a swing, each pass of a turn).
-  const same = gate.passes.filter((x) => x.dir === dir);
-  if (same.length) gate.period = tc - same[same.length - 1].tc;
-  gate.passes.push({ tc, dir });
-  if (gate.passes.length > 4) gate.passes.shift();
-  gate.flash = performance.now();
-  showGate();
-}
-
-function showGate() {
-  const T = sims.a ? sims.a.period.period : null;
-  $("gate").textContent = gate.period === null
-    ? `Photogate: ${gate.passes.length} pass${gate.passes.length === 1 ? "" : "es"}, waiting for a period`
-    : `Photogate: period ${gate.period.toFixed(3)} s · AGM ${T.toFixed(3)} s`;
-  $("gate").dataset.period = gate.period === null ? "" : String(gate.period);
-}
-
 // ---------- energies of the first pendulum now, in m g l: K = l θ′²/(2g), U = 1 − cos θ ----------
 function energyOf(st, s) {
   if (!st || st.theta === null || st.omega === null) return null;
@@ -896,11 +869,7 @@ function draw() {
   const pv = pivots[0], R = radii[0];
   g.strokeStyle = "rgba(209, 73, 91, .35)"; g.lineWidth = 1;
   if (a !== null) for (const sg of [-1, 1]) { g.beginPath(); g.moveTo(pv.x, pv.y); g.lineTo(pv.x + R * Math.sin(sg * a), pv.y + R * Math.cos(sg * a)); g.stroke(); }
-  // The photogate: a beam across the bottom of the first pendulum's circle.
-  const lit = gate.flash && performance.now() - gate.flash < 120;
-  g.strokeStyle = lit ? "#d1495b" : "rgba(209, 73, 91, .55)"; g.lineWidth = lit ? 3 : 1.5; g.setLineDash([3, 3]);
-  g.beginPath(); g.moveTo(pv.x - 22, pv.y + R); g.lineTo(pv.x + 22, pv.y + R); g.stroke(); g.setLineDash([]);
-  g.fillStyle = "#39425a"; g.fillRect(pv.x - 26, pv.y + R - 6, 4, 12); g.fillRect(pv.x + 22, pv.y + R - 6, 4, 12);
+  if (window.lab) window.lab.draw(g, { W, H, pivots, radii, lengths });  // gates, ruler, protractor (under the bobs)
   const bobs = [];
   let st = null;
   if (anim.drag !== null) bobs.push({ theta: anim.drag, color: COLORS.a, pv, R, t: 0 });
@@ -923,6 +892,7 @@ function draw() {
     g.globalAlpha = 1;
   }
   for (const p of pivots) { g.fillStyle = "#39425a"; g.beginPath(); g.arc(p.x, p.y, 4.5, 0, 2 * Math.PI); g.fill(); }
+  if (window.lab && anim.drag === null) window.lab.drawOver(g, { W, H, pivots, radii, lengths, side });  // vectors
   g.fillStyle = "#454e62"; g.font = "13px system-ui, sans-serif";
   g.fillText(`l = ${short(s.input.length)} m`, 10, 18);
   g.fillText(`α = ${short(anim.drag !== null ? Math.abs(anim.drag) * 180 / Math.PI : s.input.amplitude_deg)}°`, 10, 35);
@@ -950,10 +920,10 @@ function frame(ts) {
   requestAnimationFrame(frame);
 }
 
-/** Everything that follows the time: the swing, the photogate, the bars, the plots' cursors. */
+/** Everything that follows the time: the swing, the lab's instruments, the bars, the plots' cursors. */
 function tick() {
-  const st = draw();
-  if (st && anim.playing) photogate(st.t, st.theta);
+  draw();
+  if (window.lab) window.lab.frame();
   renderBars();
   moveCursors();
 }
@@ -961,7 +931,6 @@ function tick() {
 function setPlaying(on) {
   anim.playing = on;
   $("play").textContent = word(on ? "page.pause" : "page.play");
-  gate.prev = null;
   writeURL();
 }
 
@@ -1105,7 +1074,7 @@ async function init() {
   });
   $("inputs").addEventListener("submit", (ev) => { ev.preventDefault(); schedule(0); });
   $("play").addEventListener("click", () => setPlaying(!anim.playing));
-  $("speed").addEventListener("change", () => { anim.speed = Number($("speed").value); gate.prev = null; writeURL(); });
+  $("speed").addEventListener("change", () => { anim.speed = Number($("speed").value); writeURL(); });
   $("cursor").addEventListener("input", () => {
     anim.t = Number($("cursor").value);
     if (anim.playing) setPlaying(false); else writeURL();

@@ -1,0 +1,221 @@
+"""The lab on the page (static/lab.js), in Debian's Chromium: photogates, stopwatch, step
+buttons, ruler, damping, mass and Planet X.
+
+References: mpmath's complete elliptic integral at 30 digits for the undamped periods,
+``T = 4 sqrt(l/g) K(sin^2(alpha/2))``, and its inverse for Planet X's g; scipy's DOP853 at
+rtol 1e-12 for the damped motion's passes through the bottom.
+"""
+from __future__ import annotations
+
+import math
+from urllib.parse import parse_qs, urlparse
+
+import mpmath
+import numpy as np
+import pytest
+from playwright.sync_api import sync_playwright
+from scipy.integrate import solve_ivp
+
+from _browser import find_chromium
+from reference import G, ellipk_period
+from served import serve_in_child
+
+ARGS = ["--headless", "--no-sandbox", "--disable-gpu", "--no-first-run", "--disable-background-networking",
+        "--disable-component-update", "--disable-sync"]
+#: Two pendulums at 4x speed, each swinging its own amplitude.
+TWO = "/?length=1&amplitude=30&unit=deg&step=1e-3&t_max=60&speed=4&second=1&length2=1&amplitude2=80"
+
+
+@pytest.fixture(scope="module")
+def server():
+    with serve_in_child() as base:
+        yield base
+
+
+@pytest.fixture(scope="module")
+def browser():
+    with sync_playwright() as p:
+        b = p.chromium.launch(executable_path=find_chromium(p), args=ARGS)
+        yield b
+        b.close()
+
+
+def _open(browser, server, url, throttle=None):
+    context = browser.new_context(viewport={"width": 1400, "height": 1000})
+    pg = context.new_page()
+    pg.errors = []
+    pg.on("pageerror", lambda e: pg.errors.append(str(e)))
+    pg.on("console", lambda m: pg.errors.append(m.text) if m.type == "error" else None)
+    if throttle:  # a slow machine: Chromium's CPU throttling (the devtools protocol)
+        context.new_cdp_session(pg).send("Emulation.setCPUThrottlingRate", {"rate": throttle})
+    pg.goto(server + url)
+    pg.wait_for_function("typeof sims !== 'undefined' && sims.a !== null", timeout=60_000)
+    return context, pg
+
+
+def _gate(pg, which, timeout=30_000, when=False):
+    """The period a photogate shows (and the time of the pass that ended it), read at one instant."""
+    got = pg.wait_for_function(f"(e => e.dataset.period ? [e.dataset.period, e.dataset.t] : null)"
+                               f"(document.getElementById('{which}'))", timeout=timeout).json_value()
+    return (float(got[0]), float(got[1])) if when else float(got[0])
+
+
+def test_both_photogates_read_the_exact_periods_at_4x_on_a_throttled_cpu(browser, server):
+    context, pg = _open(browser, server, TWO, throttle=6)
+    try:
+        t1, t2 = ellipk_period(1, math.radians(30)), ellipk_period(1, math.radians(80))
+        readings = []
+        for _ in range(3):  # several periods later: each new reading from the data, not from frame gaps
+            readings.append((_gate(pg, "gate"), _gate(pg, "gate2")))
+            pg.wait_for_timeout(1500)
+        for r1, r2 in readings:
+            assert abs(r1 - t1) < 1e-3 and abs(r2 - t2) < 1e-3, (readings, t1, t2)
+        assert pg.evaluate("anim.t") > 2 * t2  # the animation ran past two periods at 4x
+        assert pg.errors == []
+    finally:
+        context.close()
+
+
+def test_the_photogate_times_a_turn_over_the_top(browser, server):
+    context, pg = _open(browser, server, "/?length=1&amplitude=17&unit=deg&step=1e-3&t_max=60&omega0=7&speed=4")
+    try:
+        turn = float(pg.locator("#period-agm").text_content())
+        assert _gate(pg, "gate") == pytest.approx(turn, abs=1e-3)
+    finally:
+        context.close()
+
+
+def _damped_period(gamma, at, length=1.0, alpha_deg=20.0, t_end=30.0):
+    """The time from the pass through the bottom two passes before the one at ``at`` to it, by DOP853 events."""
+    def f(_t, z):
+        return [z[1], -G / length * math.sin(z[0]) - gamma * z[1]]
+
+    def bottom(_t, z):
+        return z[0]
+
+    sol = solve_ivp(f, (0, t_end), [math.radians(alpha_deg), 0.0], method="DOP853", rtol=1e-12, atol=1e-14, events=bottom)
+    t = sol.t_events[0]
+    j = int(np.argmin(np.abs(t - at)))
+    assert abs(t[j] - at) < 1e-3 and j >= 2
+    return t[j] - t[j - 2]
+
+
+def test_a_damped_swing_is_timed_and_its_agm_period_called_undamped(browser, server):
+    context, pg = _open(browser, server, "/?length=1&amplitude=20&unit=deg&step=1e-3&t_max=30&speed=4&damping=0.4&method=rk4")
+    try:
+        measured, at = _gate(pg, "gate", when=True)
+        ref = _damped_period(0.4, at)
+        assert abs(measured - ref) < 1e-3 and abs(measured - ellipk_period(1, math.radians(20))) > 1e-3  # not the AGM period
+        note = pg.locator("#lab-damped").text_content()
+        assert "undamped" in note and pg.locator("#lab-damped").is_visible()
+        # The heat: the energy lost by the swing, E0 - E > 0, in J.
+        heat = pg.locator('[data-value="Q"]').text_content()
+        assert heat.endswith(" J")
+    finally:
+        context.close()
+
+
+def test_the_mass_changes_the_energies_not_the_period(browser, server):
+    out = {}
+    for m in ("0.2", "5"):
+        context, pg = _open(browser, server, f"/?length=1&amplitude=30&unit=deg&step=1e-3&t_max=20&paused=1&t=0&mass={m}")
+        try:
+            pg.wait_for_function("document.querySelector('[data-value=\"U\"]').textContent.endsWith('J')")
+            u = float(pg.locator('[data-value="U"]').text_content().split()[0])
+            pg.click("#play")
+            out[m] = (u, _gate(pg, "gate"))
+        finally:
+            context.close()
+    swing = 1 - math.cos(math.radians(30))  # U at the release, in m g l
+    assert out["0.2"][0] == pytest.approx(0.2 * G * swing, rel=1e-3) and out["5"][0] == pytest.approx(5 * G * swing, rel=1e-3)
+    assert out["0.2"][1] == out["5"][1]
+
+
+def test_step_buttons_move_by_one_step_and_pause(browser, server):
+    context, pg = _open(browser, server, "/?length=1&amplitude=30&unit=deg&step=1e-3&t_max=20")
+    try:
+        pg.select_option("#lab-by", "step")
+        pg.click("#lab-forward")
+        t0 = pg.evaluate("anim.t")
+        assert pg.evaluate("anim.playing") is False
+        pg.click("#lab-forward")
+        pg.click("#lab-forward")
+        pg.click("#lab-back")
+        assert pg.evaluate("anim.t") == pytest.approx(t0 + 1e-3, abs=1e-12)
+    finally:
+        context.close()
+
+
+def test_the_stopwatch_runs_in_simulation_time(browser, server):
+    context, pg = _open(browser, server, "/?length=1&amplitude=30&unit=deg&step=1e-3&t_max=60&speed=4")
+    try:
+        t0 = pg.evaluate("anim.t")
+        pg.click("#watch-start")
+        pg.wait_for_timeout(1500)
+        pg.click("#watch-start")
+        shown = float(pg.locator("#watch").text_content().split()[0])
+        assert shown > 3.0  # 1.5 s at 4x: about 6 s of the simulation's time
+        assert shown <= pg.evaluate("anim.t") - t0 + 0.01
+    finally:
+        context.close()
+
+
+def test_the_ruler_and_protractor_drag_and_leave_the_bob(browser, server):
+    context, pg = _open(browser, server, "/?length=1&amplitude=30&unit=deg&step=1e-3&t_max=20&paused=1&t=0&ruler=1&protractor=1")
+    try:
+        pg.wait_for_function("lab.state().ruler && lab.state().ruler.w > 0")
+        r = pg.evaluate("lab.state().ruler")
+        box = pg.locator("#canvas").bounding_box()
+        x, y = box["x"] + r["x"] + 10, box["y"] + r["y"] + 10
+        pg.mouse.move(x, y)
+        pg.mouse.down()
+        pg.mouse.move(x + 60, y - 40, steps=5)
+        pg.mouse.up()
+        moved = pg.evaluate("lab.state().ruler")
+        assert moved["x"] == pytest.approx(r["x"] + 60, abs=1) and moved["y"] == pytest.approx(r["y"] - 40, abs=1)
+        assert parse_qs(urlparse(pg.url).query)["amplitude"] == ["30"]  # the bob was not dragged
+        # The ruler's marks are metres at the swing's scale: its length on screen over the rod's radius.
+        geo = pg.evaluate("lab.state().geo")
+        assert moved["w"] / geo["radii"][0] == pytest.approx(1.0)  # a 1 m ruler beside a 1 m rod
+        pg.check("#lab-vectors")
+        assert "vectors=1" in pg.url and pg.errors == []
+    finally:
+        context.close()
+
+
+def _g_from_period(length, alpha, period):
+    """g such that 4 sqrt(l/g) K(sin^2(alpha/2)) = period (mpmath at 30 digits)."""
+    with mpmath.workdps(30):
+        k = mpmath.ellipk(mpmath.sin(mpmath.mpf(alpha) / 2) ** 2)
+        return float(length * (4 * k / mpmath.mpf(period)) ** 2)
+
+
+def test_planet_x_hides_g_and_checks_a_timed_one(browser, server):
+    context, pg = _open(browser, server, "/?length=1&amplitude=10&unit=deg&step=1e-3&t_max=40&speed=4&planet=4242")
+    try:
+        query = parse_qs(urlparse(pg.url).query)
+        assert "g" not in query and query["planet"] == ["4242"]
+        assert not pg.locator("#periods").is_visible() and not pg.locator("#g").is_visible()
+        assert "AGM" not in pg.locator("#gate").text_content()
+        g = _g_from_period(1.0, math.radians(10), _gate(pg, "gate"))
+        pg.fill("#planet-g", f"{g:.4f}")
+        pg.click("#planet-form button")
+        assert pg.get_attribute("#planet-result", "data-right") == "1"
+        pg.fill("#planet-g", f"{1.05 * g:.4f}")
+        pg.click("#planet-form button")
+        assert pg.get_attribute("#planet-result", "data-right") == "0"
+        assert "not within 2 %" in pg.locator("#planet-result").text_content()
+    finally:
+        context.close()
+
+
+def test_the_lab_in_portuguese(browser, server):
+    context, pg = _open(browser, server, "/?lang=pt&length=1&amplitude=30&unit=deg&step=1e-3&t_max=20&speed=4")
+    try:
+        assert pg.locator("#lab-title").text_content() == "Laboratório"
+        text = pg.locator("#gate").text_content()
+        assert text.startswith("Célula fotoelétrica 1")
+        period = _gate(pg, "gate")
+        assert np.isfinite(period) and "," in pg.locator("#gate").text_content()  # a decimal comma
+    finally:
+        context.close()
