@@ -90,3 +90,23 @@ def taylor2_plain(alpha: float, c: float, h: float, n: int) -> tuple[np.ndarray,
     _, z1, z2 = taylor.taylor(1.0, alpha, h, n * h, g=-c)
     assert len(z1) == n + 1
     return np.array(z1), np.array(z2)
+
+#: How close the key's answers come to the tests' independent computations (relative, or
+#: absolute in the answer's unit, as each test says): a few roundings of a correct program.
+KEY_AGREEMENT = {
+    "1(b) g": 1e-14,
+    "1(b) |e_g|, |e_g|/|g| and the corner extremes": 1e-12,
+    "2 alpha": 1e-15,
+    "2 q_k for k <= k_max": 1e-2,
+    "3(b) T^ (8), 7 iterations": 1e-15,
+    "3(c) T linear, T = p(0) and their errors": 1e-11,
+    "3(c) observed orders": 0.01,
+    "3(d) nodes x_k = z_(2,j-1+k)": 1e-11,
+    "3(d) Newton coefficients": 1e-9,
+    "3(d) error estimate": 1e-13,
+    "4 coefficients": 1e-10,
+    "4 SSD E(c)": 1e-8,
+    "4 max deviation": 1e-10,
+    "5 S_n for every n": 1e-12,
+    "5 errors and rates": 1e-6,
+}

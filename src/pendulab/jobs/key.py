@@ -15,11 +15,10 @@ from collections.abc import Sequence
 from dataclasses import dataclass
 from decimal import Decimal
 from pathlib import Path
-from typing import Any, Literal
+from typing import Any
 
 from ..core import inputs
 from ..core.errors import InputError
-from ..numerics.period import FIXED_ITERATIONS_ULPS
 
 #: Output formats by file extension.
 FORMATS = ("csv", "json", "pdf")
@@ -302,68 +301,6 @@ def class_path(output: str | os.PathLike) -> Path:
     return p.with_name(f"{p.stem}-class{p.suffix}")
 
 
-#: How an answer is compared with the key: equal (``exactly``), within a ``relative`` or an
-#: ``absolute`` difference of ``value``, an interval that ``contains`` the key's value, or
-#: ``any`` value (rounding noise). The words are the catalogues' ``key.kind.*``.
-Kind = Literal["exactly", "relative", "absolute", "contains", "any"]
-
-
-@dataclass(frozen=True)
-class Tolerance:
-    """The agreement with the key that a correct program reaches for one answer.
-
-    ``kind`` and ``value`` (with its ``unit``) are the rule; ``reason`` is the code of why a
-    correct program reaches it (the catalogues' ``key.reason.*``, filled with ``ulps``).
-    """
-
-    answer: str
-    kind: Kind
-    value: float | None
-    unit: str
-    reason: str
-
-    def to_dict(self) -> dict[str, Any]:
-        return {"answer": self.answer, "kind": self.kind, "value": self.value, "unit": self.unit,
-                "reason": self.reason}
-
-
-#: What a correct program must reach for each answer, so that a teacher marks without
-#: guessing. The 3(c)-(d) figures are met by an independent plain-Python program of the
-#: coursework's formulas (tests/test_key.py checks it against them).
-TOLERANCES: tuple[Tolerance, ...] = (
-    Tolerance("1(b) g", "relative", 1e-14, "", "few_roundings"),
-    Tolerance("1(b) |e_g|, |e_g|/|g| and the corner extremes", "relative", 1e-12, "", "few_products"),
-    Tolerance("1(b) significant digits", "exactly", None, "", "integer"),
-    Tolerance("2 interval [a, b]", "contains", None, "", "any_interval"),
-    Tolerance("2 alpha", "absolute", 1e-15, "rad", "newton_rounding"),
-    Tolerance("2 q_k for k <= k_max", "relative", 1e-2, "", "q_rounding_bound"),
-    Tolerance("2 q_k for k > k_max", "any", None, "", "rounding_noise"),
-    Tolerance("3(b) sum, its non-zero digits, l", "exactly", None, "", "length_rule"),
-    Tolerance("3(b) T^ (8), 7 iterations", "relative", 1e-15, "", "agm_order"),
-    Tolerance("3(b) h = 0.2: outcome, j, bracket, T^ inside", "exactly", None, "", "grid_times"),
-    Tolerance("3(c) j and bracket for each h", "exactly", None, "", "grid_times"),
-    Tolerance("3(c) T linear, T = p(0) and their errors", "absolute", 1e-11, "s", "taylor_rounding"),
-    Tolerance("3(c) observed orders", "absolute", 0.01, "", "logarithms"),
-    Tolerance("3(d) nodes x_k = z_(2,j-1+k)", "relative", 1e-11, "", "same_taylor_steps"),
-    Tolerance("3(d) Newton coefficients", "relative", 1e-9, "", "divided_differences"),
-    Tolerance("3(d) error estimate", "absolute", 1e-13, "s", "cancellation"),
-    Tolerance("3(d) negligible?", "exactly", None, "", "yes_no"),
-    Tolerance("4 normal equations A, r (6 decimals)", "exactly", None, "", "six_decimals"),
-    Tolerance("4 coefficients", "absolute", 1e-10, "", "stable_solver"),
-    Tolerance("4 SSD E(c)", "relative", 1e-8, "", "sum_of_squares"),
-    Tolerance("4 max deviation", "absolute", 1e-10, "", "data_deviations"),
-    Tolerance("5 S_n for every n", "relative", 1e-12, "", "long_sums"),
-    Tolerance("5 errors and rates", "relative", 1e-6, "", "differences_and_logarithms"),
-)
-#: The number the reasons' words are filled with (``agm_order``: the bound on ``T^``'s rounding).
-REASON_VALUES = {"ulps": FIXED_ITERATIONS_ULPS}
-
-
-def tolerance(answer: str) -> Tolerance:
-    """The tolerance of the answer named ``answer`` (see :data:`TOLERANCES`)."""
-    return next(t for t in TOLERANCES if t.answer == answer)
-
-
 @dataclass(frozen=True, eq=False)
 class AnswerKey:
     """The answers of every group (problem 3) and the common ones (problems 1, 2, 4, 5)."""
@@ -372,9 +309,9 @@ class AnswerKey:
     groups: list[dict[str, Any]]
 
     def to_dict(self) -> dict[str, Any]:
-        """The key as plain data: the answers and the marking tolerances (codes; the words are
-        the presenters', :func:`pendulab.report.key.document`)."""
-        return {"common": self.common, "groups": self.groups, "tolerances": [t.to_dict() for t in TOLERANCES]}
+        """The key as plain data: the answers (what a correct method may give for each is
+        :mod:`pendulab.jobs.mark`'s, :func:`pendulab.report.key.document`)."""
+        return {"common": self.common, "groups": self.groups}
 
 
 def _f(x: float | None) -> float | None:

@@ -1,7 +1,7 @@
 """The answer key (:mod:`pendulab.jobs.key`) as CSV, JSON or a PDF table, written atomically.
 
 The CSV is one header row and one row per group; the answers common to the class and the
-marking tolerances go to a second CSV beside it (:func:`pendulab.jobs.key.class_path`).
+class questions keyed go to a second CSV beside it (:func:`pendulab.jobs.key.class_path`).
 """
 from __future__ import annotations
 
@@ -15,28 +15,16 @@ from typing import Any
 
 from ..core.atomic import check_writable, temp_folder, write_bytes, write_together
 from ..core.errors import InputError
-from ..jobs.key import FORMATS, REASON_VALUES, TOLERANCES, AnswerKey, Tolerance, class_path, output_format
+from ..jobs.key import FORMATS, AnswerKey, class_path, output_format
 from .markup import fixed, num, sci
 from .typeset import breakable, needs_system_fonts, typeset
 from .words import sentence
 
 
-def agreement(t: Tolerance, lang: str = "en") -> str:
-    """The rule of a tolerance in words: ``relative 1e-14``, ``absolute 1e-11 s``, ``exactly``."""
-    value = "" if t.value is None else f"{t.value:g}{' ' + t.unit if t.unit else ''}"
-    return sentence(f"key.kind.{t.kind}", lang, value=value)
-
-
-def why(t: Tolerance, lang: str = "en") -> str:
-    """Why a correct program reaches the tolerance, in words."""
-    return sentence(f"key.reason.{t.reason}", lang, **REASON_VALUES)
-
-
 def document(key: AnswerKey, lang: str = "en") -> dict[str, Any]:
-    """The key's JSON document: :meth:`AnswerKey.to_dict`, each tolerance with its words
-    (``agreement``, ``why``) beside its codes."""
+    """The key's JSON document: :meth:`AnswerKey.to_dict` and every question with what a
+    correct method may give (:func:`questions`)."""
     d = key.to_dict()
-    d["tolerances"] = [t.to_dict() | {"agreement": agreement(t, lang), "why": why(t, lang)} for t in TOLERANCES]
     d["questions"] = questions(key)
     return d
 
@@ -205,7 +193,7 @@ def class_rows(key: AnswerKey) -> list[tuple[str, str, Any]]:
 
 
 def _class_csv(key: AnswerKey) -> str:
-    """The class-wide answers, one per row, and the marking tolerances."""
+    """The class-wide answers, one per row, and every class question as ``pendulab mark`` reads it."""
     buf = io.StringIO()
     w = csv.writer(buf, lineterminator="\n")
     w.writerow(["problem", "answer", "value"])
@@ -215,8 +203,6 @@ def _class_csv(key: AnswerKey) -> str:
 
     for q in class_questions():  # every question as the answers file names it, as printed
         w.writerow([f"question {q.part}", q.column, key_text(q)])
-    for t in TOLERANCES:
-        w.writerow(["tolerance", t.answer, f"{agreement(t)} ({why(t)})"])
     return buf.getvalue()
 
 
@@ -229,7 +215,7 @@ def _block(title: str, heads: list[str], rows: list[list[str]], note: str = "", 
 
 
 def class_blocks(key: AnswerKey) -> list[dict[str, Any]]:
-    """The class-wide pages of the PDF key: problems 1, 2, 4, 5 and the tolerances."""
+    """The class-wide pages of the PDF key: problems 1, 2, 4, 5 and every question keyed."""
     c = key.common
     p1, p2, p5 = c["problem1"], c["problem2"], c["problem5"]
     blocks = [_block("Problem 1(b)", ["quantity", "value"], [
@@ -288,9 +274,6 @@ def class_blocks(key: AnswerKey) -> list[dict[str, Any]]:
         rows.append([str(g["line"]), " ".join(map(str, g["students"]))] + [by.get(c, "") for c in picked])
     blocks.append(_block("Problem 3(b), 3(d) for each group, as `pendulab mark` reads them",
                          ["line", "students", *picked], rows, plain=True))
-    blocks.append(_block("Marking tolerances: the agreement a correct program reaches",
-                         ["answer", "agreement with this key", "why"],
-                         [[t.answer, agreement(t), why(t)] for t in TOLERANCES], plain=True))
     return blocks
 
 
