@@ -360,3 +360,40 @@ def test_far_from_pi_a_return_is_trusted():
 def test_a_quarter_period_off_is_untrusted():
     assert untrusted(0.0, 1.0, 1.26, 1.0) and not untrusted(0.0, 1.0, 1.24, 1.0)
     assert untrusted(2.0, 1.0, 1.0, 1.0) and not untrusted(1.0, 1.0, 1.0, 1.0)
+
+
+# ---------------------------------------------------------------------------- the dense crossing's bound
+@pytest.mark.parametrize("method", ["taylor2", "rk4", "taylor:8"])
+def test_dense_crossing_within_its_bound_as_estimate_period_calls_it(method):
+    """search_period's (estimate_period's) dense estimate against the exact flow through its own bracket point
+    (taken at the real time j h: benchmarks/adversarial.py, turning_time), over the steps callers
+    type and amplitudes from 0.3 to pi - 1e-6: the worst within crossing_bound (roundings of
+    t_j = j h and of t_j + s included)."""
+    import sys
+    from pathlib import Path
+
+    import mpmath
+
+    sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "benchmarks"))
+    import adversarial
+
+    from pendulab.numerics.dense import crossing_bound
+
+    worst = 0.0
+    for length, alpha in [(EXAMPLE_LENGTH, 4 * math.pi / 5), (0.3, 0.3), (25.0, 2.9), (1.0, math.pi - 1e-6)]:
+        c, w = -G / length, math.sqrt(G / length)
+        for h in (0.1, 0.02, 1e-2, 1e-3):
+            if w * h > 0.4:
+                continue
+            e = search_period(length, alpha, h, method=method).estimate  # an untrusted return too
+            if e is None:  # over the top: no bracket
+                continue
+            (z1a, z1b), (z2a, z2b) = e.window_theta[2:4], e.window_omega[2:4]
+            with mpmath.workdps(60):
+                ta = mpmath.mpf(e.j) * h
+                if z2a / (z2a - z2b) <= 0.5:
+                    ref = ta + adversarial.turning_time(z1a, z2a, c, True)
+                else:
+                    ref = ta + h - adversarial.turning_time(z1b, z2b, c, False)
+                worst = max(worst, float(abs(e.dense - ref)) / crossing_bound(e.dense, w, h))
+    assert worst <= 1.0

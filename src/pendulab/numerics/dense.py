@@ -30,12 +30,31 @@ import math
 
 #: Degree of the series. Its truncation falls like ``(omega0 s / R)^17``, ``|s| <= h/2``,
 #: with ``R`` (2 to 3) the distance from the real axis to the motion's complex
-#: singularities in ``omega0 t``, not like ``1/17!``. Measured (``benchmarks/adversarial.py``,
-#: ``dense_search``, against the exact flow through the same point): the crossing is
-#: within ``2^-52/omega0`` for ``omega0 h <= 0.4`` and within ``1e-10/omega0`` for
-#: ``omega0 h <= 1`` (``docs/accuracy.md`` prints the worst cases found).
+#: singularities in ``omega0 t``, not like ``1/17!``. The time returned obeys
+#: :func:`crossing_bound`.
 DEGREE = 16
+#: ``omega0`` times the error of the series' zero ``s`` (truncation and Newton's rounding) for
+#: ``omega0 h`` up to each key: measured (``benchmarks/adversarial.py``, ``dense_search``).
+SERIES_ERROR = {0.4: 2.0**-52, 1.0: 1e-10}
+#: The roundings of ``t_j = j h``, of ``h + s`` and of the returned sum: half an ulp each,
+#: ``2^-53 (|t_j| + h + |t|) <= 2^-52 (|t| + h)`` for ``0 <= t_j <= t``.
+SUM_ROUNDING = 2.0**-52
 _MAX_NEWTON = 60
+
+
+def crossing_bound(t: float, omega0: float, step: float) -> float:
+    """The bound on the error of :func:`dense_crossing`'s time ``t`` (s) against the zero of ``theta'``
+    of the flow through the bracket point, that point taken at the real time ``j h``.
+
+    ``SERIES_ERROR/omega0 + 2^-52 (|t| + h)``: the first for the series' zero ``s``
+    (measured, for ``omega0 h`` up to :data:`SERIES_ERROR`'s keys; infinite beyond), the
+    second for the roundings of ``t_j = j h``, of ``h + s`` and of the sum (derived: half an
+    ulp each, :data:`SUM_ROUNDING`), which a double near ``t`` cannot avoid. Searched as
+    :func:`pendulab.numerics.crossing.estimate_period` calls it (``benchmarks/adversarial.py``,
+    ``dense_search``; ``docs/accuracy.md``).
+    """
+    limit = next((e for wh, e in sorted(SERIES_ERROR.items()) if omega0 * step <= wh), math.inf)
+    return limit / omega0 + SUM_ROUNDING * (abs(t) + step)
 
 
 def flow_series(z1: float, z2: float, c: float, degree: int = DEGREE) -> list[float]:
@@ -115,11 +134,12 @@ def dense_crossing(z1: tuple[float, float], z2: tuple[float, float], c: float, s
     Returns
     -------
     float
-        The crossing time, relative to ``t0``.
+        The crossing time, relative to ``t0``: within :func:`crossing_bound` of the flow's.
     """
     frac = z2[0] / (z2[0] - z2[1])  # linear estimate, in units of h from t_j
     if frac <= 0.5:
         x = flow_series(z1[0], z2[0], c)
         return t_j + series_zero(x, frac * step, 0.0, step)
     x = flow_series(z1[1], z2[1], c)
-    return (t_j + step) + series_zero(x, (frac - 1) * step, -step, 0.0)
+    # t_j + (h + s), h + s in [0, h]: one rounding of the size of t fewer than (t_j + h) + s
+    return t_j + (step + series_zero(x, (frac - 1) * step, -step, 0.0))
