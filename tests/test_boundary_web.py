@@ -47,6 +47,7 @@ def test_openapi_lists_every_parameter():
     assert set(found["/api/trajectory.csv"]) == set(found["/api/simulate"]) - {"lang"} | {"columns"}  # no words
     assert set(found["/api/motion"]) == {"length", "amplitude", "unit", "g", "t_max", "lang"}
     assert set(found["/api/convergence"]) == {"length", "amplitude", "unit", "g", "method", "steps", "lang"}
+    assert set(found["/api/config"]) == {"lang"}
 
 
 CASES = [(path, name) for path, names in endpoints().items() for name in names]

@@ -405,17 +405,23 @@ def test_blown_up_simulation_is_flagged_on_the_page(browser, server):
 
 
 def test_stale_results_are_dimmed_after_an_error(page, server):
+    """The graphics of stale results fade and their cards are dashed; their text keeps its
+    contrast (no opacity on it: axe's colour contrast holds in the error state too)."""
     page.goto(server + "/?length=3.5&amplitude=144&unit=deg&step=1e-3&t_max=20")
     wait_for_period(page, ellipk_period(3.5, 0.8 * math.pi))
-    opacity = "getComputedStyle(document.getElementById('plots')).opacity"
-    assert page.evaluate(opacity) == "1"
+    page.wait_for_function("document.querySelectorAll('.js-plotly-plot').length >= 4")
+    faded = ("[...document.querySelectorAll('#canvas, .js-plotly-plot')].every((e) => getComputedStyle(e).opacity < 0.5)"
+             " && getComputedStyle(document.getElementById('periods')).borderTopStyle === 'dashed'")
+    assert page.evaluate("getComputedStyle(document.getElementById('canvas')).opacity") == "1"
     page.fill("#length", "abc")
     page.wait_for_selector("#length-error:not([hidden])")
-    page.wait_for_function(f"{opacity} < 0.5 && getComputedStyle(document.getElementById('animation')).opacity < 0.5")
+    page.wait_for_function(faded)
+    text = "[...document.querySelectorAll('#periods, #animation, #plots')].map((e) => getComputedStyle(e).opacity)"
+    assert page.evaluate(text) == ["1", "1", "1"]
     assert "length" in page.locator("#length-error").text_content()
     page.fill("#length", "2")
     wait_for_period(page, ellipk_period(2, 0.8 * math.pi))
-    page.wait_for_function(f"{opacity} == 1")
+    page.wait_for_function("getComputedStyle(document.getElementById('canvas')).opacity == 1")
 
 
 def test_every_new_control_is_in_the_url(page, server):

@@ -42,6 +42,22 @@ def test_config_hands_the_page_its_words(client, lang):
     assert body["words"]["page.period"] == {"en": "Period", "pt": "Período"}[lang]
 
 
+@pytest.mark.parametrize("lang, words", [("en", "too large for amplitude 2.4 rad"), ("pt", "grande demais para a amplitude 2,4 rad")])
+def test_a_missing_period_says_why_in_the_language_asked(client, lang, words):
+    # h = 0.5 s from 2.4 rad: the discrete pendulum goes over the top (test_web_api has the time).
+    q = {"length": "1", "amplitude": "2.4", "step": "0.5", "t_max": "20", "lang": lang}
+    period = client.get("/api/simulate", params=q).json()["period"]
+    assert period["status"] == "left_oscillation" and words in period["reason"]
+    rows = client.get("/api/convergence", params=q | {"steps": "0.5"}).json()["rows"]
+    assert words in rows[0]["reason"]
+
+
+def test_a_launch_says_why_there_is_no_estimate_in_portuguese(client):
+    q = {"length": "1", "amplitude": "1", "step": "0.01", "t_max": "2", "omega0": "1.5", "lang": "pt"}
+    reason = client.get("/api/simulate", params=q).json()["period"]["reason"]
+    assert reason.startswith("o período é estimado") and "θ′(0) = 1,5 rad/s" in reason
+
+
 def test_config_without_lang_is_english(client):
     assert client.get("/api/config").json()["lang"] == "en"
 
@@ -64,11 +80,12 @@ def test_both_catalogues_hold_the_same_web_keys_and_fields():
 
 
 #: Entries written alike in both languages: symbols, names and words that are Portuguese too.
-SAME_IN_BOTH = {"page.csv", "page.amplitude"}
+SAME_IN_BOTH = {"page.csv", "page.amplitude", "page.run", "page.relative", "page.linear", "page.total"}
 
 
-def test_every_page_entry_is_translated():
-    same = {k for k in EN if k.startswith("page.") and EN[k] == PT[k]}
+def test_every_entry_is_translated():
+    """The page's, the reasons' and the flags' entries (the lab's block has its own test)."""
+    same = {k for k in EN if k.split(".")[0] in ("page", "reason", "flag") and EN[k] == PT[k]}
     assert same == SAME_IN_BOTH
 
 
@@ -78,7 +95,7 @@ def _page_keys() -> set[str]:
     for script in STATIC.glob("*.js"):
         if script.name.startswith("plotly"):
             continue
-        keys |= set(re.findall(r'\bword\("([^"$]+)"', script.read_text(encoding="utf-8")))
+        keys |= set(re.findall(r'\bword\("([^"$]+)"\s*[,)]', script.read_text(encoding="utf-8")))
     return keys
 
 
@@ -90,4 +107,4 @@ def test_every_key_the_page_names_is_in_the_catalogues():
 
 def test_the_scan_finds_a_missing_key(tmp_path):
     """The check above can fail: a key that no catalogue has is found by the same expression."""
-    assert re.findall(r'\bword\("([^"$]+)"', 'x = word("page.no-such-key");') == ["page.no-such-key"]
+    assert re.findall(r'\bword\("([^"$]+)"\s*[,)]', 'x = word("page.no-such-key");') == ["page.no-such-key"]

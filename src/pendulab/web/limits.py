@@ -59,14 +59,17 @@ def check_run(span: float, step: float, method: Method, step_text: str | None = 
                           hint="or a shorter t_max")
 
 
-def search_too_long(span: float, step: float, period: float, method: Method) -> str | None:
-    """Why the period search over ``span`` s (``1.5 T + 4h``) is not run, or None when it fits."""
+def search_too_long(span: float, step: float, period: float, method: Method, lang: str = "en") -> str | None:
+    """Why the period search over ``span`` s (``1.5 T + 4h``) is not run, or None when it fits
+    (``web.reason.too-long``, in ``lang``)."""
+    from .words import number, say
+
     most = max_steps(method)
     if span / step <= most:
         return None
-    hint = f"; use step >= {span / most:.3g} s" if span / most < period / 20 else ""
-    return (f"the period search would run {span / step:.3g} steps of h = {step:g} s to reach 1.5 T + 4h = {span:.4g} s, "
-            f"more than the {most:.3g} steps of {method.name} allowed{hint}")
+    hint = say("reason.use-step", lang, step=number(span / most, ".3g", lang)) if span / most < period / 20 else ""
+    return say("reason.too-long", lang, steps=number(span / step, ".3g", lang), h=number(step, "g", lang),
+               span=number(span, ".4g", lang), most=number(most, ".3g", lang), method=method.name, hint=hint)
 
 
 def check_sweep(spans: list[float], steps: list[float], method: Method) -> None:

@@ -13,7 +13,7 @@ from __future__ import annotations
 import functools
 import math
 from collections.abc import Iterator, Mapping
-from typing import TYPE_CHECKING, Any
+from typing import TYPE_CHECKING, Any, cast
 
 import numpy as np
 from pydantic import BaseModel
@@ -74,14 +74,13 @@ def estimate_view(length: float, amplitude: float, step: float, g: float, method
 
     period = float(agm_period(length, amplitude, g)) if period is None else period
     span = default_t_max(period, step)
-    if reason := limits.search_too_long(span, step, period, resolve(method)):
+    if reason := limits.search_too_long(span, step, period, resolve(method), lang):
         return {"estimate": None, "status": NOT_RUN, "reason": reason}  # the period is too long for this step: say so, keep the rest
     if amplitude == 0:
-        return {"estimate": None, "status": NOT_RUN,
-                "reason": "amplitude 0: released at rest at the bottom the pendulum does not move, so it has no period to find"}
+        return {"estimate": None, "status": NOT_RUN, "reason": words.say("reason.at-rest", lang)}
     s = search_period(length, amplitude, step, g=g, method=method, period=period)
     if not s.found or s.estimate is None:
-        return {"estimate": None, "status": s.status.name.lower(), "reason": search_reason(s)}
+        return {"estimate": None, "status": s.status.name.lower(), "reason": search_reason(s, lang)}
     e = s.estimate.to_dict()
     mid = 0.5 * (e["bracket"][0] + e["bracket"][1])
     errors = {"bracket_mid": abs(mid - e["period"]), "linear": _num(e["linear_error"]), "cubic": _num(e["cubic_error"])}
@@ -99,33 +98,29 @@ def _answer(model: type[BaseModel], result: Mapping[str, Any]) -> dict[str, Any]
 NOT_RUN = "not_run"
 
 
-def search_reason(s: PeriodSearch) -> str:
+def search_reason(s: PeriodSearch, lang: str = "en") -> str:
     """Why a period search (:func:`pendulab.numerics.crossing.search_period`) found no period, from its
-    status and data, in the page's words (the search's ``t_max`` is the page's, not the reader's)."""
+    status and data, in the page's words (``web.reason.*``; the search's ``t_max`` is the page's,
+    not the reader's)."""
+    num = functools.partial(words.number, lang=lang)
     if s.underflow:
         k = s.g / s.length
-        return (f"amplitude {s.amplitude:.3g} rad is too small for a simulation in double precision: the first step's "
-                f"change of theta', about h (g/l) alpha = {k * s.step:.3g} x {s.amplitude:.3g} rad/s, rounds to zero, so the "
-                f"simulation never moves; use an amplitude above {s.moving_amplitude:.3g} rad or a larger step")
+        return words.say("reason.underflow", lang, amplitude=num(s.amplitude, ".3g"), change=num(k * s.step, ".3g"),
+                         moving=num(cast(float, s.moving_amplitude), ".3g"))  # set where underflow is
     if s.status == Status.UNTRUSTED and s.estimate is not None and s.max_energy_drift is not None:
-        why = (f"its energy error {s.max_energy_drift:.2g} 1/s^2 at the return exceeds the distance to the separatrix "
-               f"(g/l)(1 + cos(alpha)) = {s.separatrix_distance:.2g} 1/s^2"
+        why = (words.say("reason.untrusted-energy", lang, drift=num(s.max_energy_drift, ".2g"),
+                         distance=num(s.separatrix_distance or 0.0, ".2g"))
                if s.max_energy_drift > (s.separatrix_distance or 0.0) else
-               f"its estimate is {abs(s.estimate.cubic - s.period) / s.period:.0%} of the period off")
-        return (f"the simulation returns at p(0) = {s.estimate.cubic:.6g} s (T = {s.period:.6g} s by the AGM (8)) but "
-                f"cannot be trusted near the separatrix: {why}; use a smaller step or a higher-order method")
+               words.say("reason.untrusted-off", lang, percent=num(100 * abs(s.estimate.cubic - s.period) / s.period, ".0f")))
+        return words.say("reason.untrusted", lang, cubic=num(s.estimate.cubic, ".6g"), period=num(s.period, ".6g"), why=why)
     if s.status == Status.NODES_COINCIDE:
-        return (f"theta' moves in subnormal steps at amplitude {s.amplitude:.3g} rad: two of the five values of theta' "
-                "around its sign change are equal, so no inverse cubic (3(d)) passes through them; use a larger amplitude")
+        return words.say("reason.nodes-coincide", lang, amplitude=num(s.amplitude, ".3g"))
     if s.status == Status.LEFT_OSCILLATION:
-        return (f"the discrete pendulum went over the top (|theta| >= pi) at t = {s.t_left:.6g} s, which the real one "
-                f"released at rest below pi never does: step h = {s.step:g} s is too large for amplitude "
-                f"{s.amplitude:.6g} rad with {s.method}; use a smaller step")
+        return words.say("reason.left-oscillation", lang, t=num(cast(float, s.t_left), ".6g"), h=num(s.step, "g"),
+                         amplitude=num(s.amplitude, ".6g"), method=s.method)
     if s.status == Status.NO_RETURN:
-        return (f"the simulation does not return to P = (alpha, 0) within the search's 1.5 T + 4h = {s.t_max:.4g} s "
-                f"(T = {s.period:.6g} s by the AGM (8)): its motion is far from the pendulum's; use a smaller step")
-    return (f"the sign change of theta' comes at step j = {s.j}, too early for the interpolation's nodes before it: "
-            f"step h = {s.step:g} s is too large; use a smaller step")
+        return words.say("reason.no-return", lang, t_max=num(s.t_max, ".4g"), period=num(s.period, ".6g"))
+    return words.say("reason.too-early", lang, j=s.j, h=num(s.step, "g"))
 
 
 def exact_state(p: Mapping[str, Any], t: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
@@ -218,9 +213,8 @@ def simulate_view(params: Mapping[str, str]) -> dict[str, Any]:
     elif launched is None:
         est = estimate_view(p["length"], p["amplitude"], p["step"], p["g"], p["method"], per.period, lang)
     else:  # the coursework's estimate times a release at rest; a launch has its period from pendulab.numerics.launched
-        est = {"estimate": None, "status": NOT_RUN, "reason": (
-            f"the period is estimated from a release at rest; this pendulum is launched with theta'(0) = {p['omega0']:g} "
-            f"rad/s: its {'time for one turn' if launched['circulates'] else 'period'} is shown")}
+        est = {"estimate": None, "status": NOT_RUN, "reason": words.say(
+            "reason.launched-turn" if launched["circulates"] else "reason.launched", lang, omega0=words.number(p["omega0"], "g", lang))}
     sim = sampling.simulate_arrays(p, points, None if launched else per.period)
     sim["circulates"] = bool(launched and launched["circulates"])
     h, n, nb = p["step"], sim["n"], sim["columns"]

@@ -28,7 +28,7 @@ let lang = "en";                                  // the page's language: ?lang=
 let langGiven = false;                            // ?lang= in the URL: kept there
 let config = null;
 let state = {};
-let view = { exact: true, scale: false, errlog: false, second: false, side: 1 };
+let view = { exact: true, scale: false, errlog: false, second: false, side: 1, projector: false, plotkeys: false };
 let sims = { a: null, b: null, second: null };  // the last good answers
 let curve = null;                                 // /api/period_curve, asked once
 let seq = 0;                                      // drops answers to requests that are no longer current
@@ -81,6 +81,8 @@ function readURL() {
   view.errlog = q.get("errlog") === "1";
   view.second = q.get("second") === "1";
   view.side = q.get("side") === "left" ? -1 : 1;
+  view.projector = q.get("view") === "projector";
+  view.plotkeys = q.get("plotkeys") === "1";
   // prefers-reduced-motion: nothing moves until the person presses Play (or the link says so).
   anim.playing = q.has("paused") ? q.get("paused") !== "1" : !REDUCED_MOTION;
   const t = Number(q.get("t"));
@@ -100,7 +102,8 @@ function writeForm() {
   ensureOption($("method2"), state.method2);
   for (const k of FIELDS) $(k).value = state[k];
   $("speed").value = String(anim.speed);
-  for (const k of ["exact", "scale", "errlog", "second"]) $(k).checked = view[k];
+  for (const k of ["exact", "scale", "errlog", "second", "plotkeys"]) $(k).checked = view[k];
+  showProjector();
   $("second-fields").hidden = !view.second;
   $("play").textContent = word(anim.playing ? "page.pause" : "page.play");
   markPreset();
@@ -109,7 +112,7 @@ function writeForm() {
 
 function readForm() {
   for (const k of FIELDS) state[k] = $(k).value.trim();
-  for (const k of ["exact", "scale", "errlog", "second"]) view[k] = $(k).checked;
+  for (const k of ["exact", "scale", "errlog", "second", "plotkeys"]) view[k] = $(k).checked;
 }
 
 function pageQuery() {
@@ -124,6 +127,8 @@ function pageQuery() {
   if (view.errlog) q.set("errlog", "1");
   if (view.second) q.set("second", "1");
   if (view.side < 0) q.set("side", "left");
+  if (view.projector) q.set("view", "projector");
+  if (view.plotkeys) q.set("plotkeys", "1");
   if (!anim.playing) { q.set("paused", "1"); q.set("t", String(Number(anim.t.toPrecision(6)))); }
   if (langGiven) q.set("lang", lang);
   if (window.lab) window.lab.query(q, "url");
@@ -170,14 +175,14 @@ function schedule(delay = 200) {
 async function getJSON(url) {
   const r = await fetch(url);
   let body = null;
-  try { body = await r.json(); } catch (e) { body = { error: { message: `server answered ${r.status}` } }; }
+  try { body = await r.json(); } catch (e) { body = { error: { message: word("page.server-answered", { status: r.status }) } }; }
   return { ok: r.ok, body };
 }
 
 /** An error of a request about another field set (the comparison, the second pendulum), on its own field. */
-function renamed(err, names, prefix) {
+function renamed(err, names, key) {
   const e = err || {};
-  return { ...e, field: names[e.field] || e.field, message: prefix + (e.message || "unknown error") };
+  return { ...e, field: names[e.field] || e.field, message: word(key, { message: e.message || word("page.unknown-error") }) };
 }
 
 async function update() {
@@ -186,7 +191,7 @@ async function update() {
   markPreset();
   const my = ++seq;
   const amplitudeQuery = apiAmplitude();
-  $("status").textContent = "Simulating…";
+  $("status").textContent = word("page.simulating");
   document.body.classList.add("busy");
   let ra, rb = null, rs = null;
   try {
@@ -197,16 +202,16 @@ async function update() {
     rb = pb ? await pb : null;
     rs = ps ? await ps : null;
   } catch (e) {
-    if (my === seq) showError({ message: "the pendulab server does not answer: is `pendulab serve` still running?" });
+    if (my === seq) showError({ message: word("page.no-server") });
     return;
   }
   if (my !== seq) return;
   document.body.classList.remove("busy");
   if (!ra.ok) { showError(ra.body.error); return; }
-  if (rb && !rb.ok) { showError(renamed(rb.body.error, { step: "step2", method: "method2" }, "second method: ")); return; }
+  if (rb && !rb.ok) { showError(renamed(rb.body.error, { step: "step2", method: "method2" }, "page.second-method-error")); return; }
   if (rs && !rs.ok) {
     const names = state.length2 || state.amplitude2 || state.g2 ? { length: "length2", amplitude: "amplitude2", g: "g2" } : {};
-    showError(renamed(rs.body.error, names, "second pendulum: "));
+    showError(renamed(rs.body.error, names, "page.second-pendulum-error"));
     return;
   }
   clearError();
@@ -217,8 +222,8 @@ async function update() {
   $("csv2").hidden = !sims.b;
   if (sims.b) $("csv2").href = "/api/trajectory.csv?" + apiQuery("b", { columns: "all" }, false);
   const s = sims.a;
-  const thinned = s.thinning === "none" ? "every step plotted" : `θ(t): min and max of each of ${s.columns} columns`;
-  $("status").textContent = `${s.n_steps.toLocaleString("en")} steps of ${s.input.method}; ${thinned}.`;
+  const thinned = s.thinning === "none" ? word("page.every-step") : word("page.columns", { columns: count(s.columns) });
+  $("status").textContent = word("page.steps-of", { n: count(s.n_steps), method: s.input.method, thinned });
   const tEnd = s.frames.t[s.frames.t.length - 1];
   if (anim.t > tEnd) anim.t = 0;
   $("cursor").max = String(tEnd);
@@ -244,7 +249,7 @@ const nextFrame = () => new Promise((resolve) => requestAnimationFrame(() => res
 
 async function updateConvergence(my) {
   if (sims.a.launch) {  // the estimates time a release at rest
-    renderConvergence(null, { message: "period estimates need a release at rest (θ′₀ = 0)" });
+    renderConvergence(null, { message: word("page.rest-needed") });
     return;
   }
   const T = sims.a.period.period;
@@ -280,9 +285,9 @@ function clearFieldErrors() {
 function showError(err) {
   document.body.classList.remove("busy");
   clearFieldErrors();
-  let message = err && err.message ? err.message : "unknown error";
+  let message = err && err.message ? err.message : word("page.unknown-error");
   const field = err && err.field && ERROR_FIELDS.includes(err.field) ? err.field : null;
-  if (field && /^\s*[+-]?\d+,\d+\s*$/.test($(field).value)) message += ` (write a decimal point: ${$(field).value.trim().replace(",", ".")})`;
+  if (field && /^\s*[+-]?\d+,\d+\s*$/.test($(field).value)) message += ` (${word("page.decimal-point", { text: $(field).value.trim().replace(",", ".") })})`;
   if (field) {
     // The message right under its field, and announced with it.
     const input = $(field), box = $(field + "-error");
@@ -294,7 +299,7 @@ function showError(err) {
     $("error").textContent = message;
     $("error").hidden = false;
   }
-  $("status").textContent = "Results shown are from the last valid input.";
+  $("status").textContent = word("page.stale");
   $("main").classList.add("stale");
   $("csv").setAttribute("aria-disabled", "true");
   document.body.dataset.shown = "1";
@@ -306,11 +311,12 @@ function clearError() {
 }
 
 // ---------- numbers ----------
-const fix = (x, d = 12) => (x === null || x === undefined ? "–" : x.toPrecision(d));
-const sci = (x) => (x === null || x === undefined ? "–" : x === 0 ? "0" : x.toExponential(2));
+// Numbers a person reads, in the page's language (fix, sci, shown); short() is also a value put back in a field.
+const fix = (x, d = 12) => num(x, d);
+const sci = (x) => (x === null || x === undefined ? "–" : x === 0 ? "0" : local(x.toExponential(2)));
 const short = (x) => String(Number(x.toPrecision(12)));
-const label = (s) => `${s.input.method}, h = ${short(s.input.step)} s`;
-const FLAG_WORDS = { wrong: "Not the pendulum's motion", warn: "Out of step with the exact motion", note: "Bounded energy error" };
+const shown = (x) => local(short(x));
+const label = (s) => word("page.run", { method: s.input.method, h: shown(s.input.step) });
 
 function renderFlags() {
   // At the top of the results (the first thing on a phone): what is wrong, in words.
@@ -325,7 +331,7 @@ function renderFlags() {
       p.className = f.severity;
       p.dataset.kind = f.kind;
       const b = document.createElement("b");
-      b.textContent = `${FLAG_WORDS[f.severity]} (${label(s)}): `;
+      b.textContent = `${word("flag." + f.severity)} (${label(s)}): `;
       p.append(b, document.createTextNode(f.text + "."));
       box.append(p);
       n++;
@@ -339,22 +345,34 @@ function tableFor(s, suffix) {
   wrap.className = "estimates" + (s.flags.trustworthy ? "" : " untrusted");
   const cap = document.createElement("p");
   cap.className = "caption";
-  cap.textContent = label(s) + (s.flags.trustworthy ? "" : " — flagged: see the warning");
+  cap.textContent = label(s) + (s.flags.trustworthy ? "" : " — " + word("page.flagged"));
   const t = document.createElement("table");
-  t.innerHTML = "<thead><tr><th>From the simulation</th><th>Estimate (s)</th><th>|Error| (s)</th><th>Rel.</th></tr></thead>";
+  const head = document.createElement("thead"), hr = document.createElement("tr");
+  for (const key of ["page.from-simulation", "page.estimate-s", "page.error-s", "page.relative"]) {
+    const th = document.createElement("th");
+    th.scope = "col";
+    th.textContent = word(key);
+    hr.append(th);
+  }
+  head.append(hr);
+  t.append(head);
   const body = document.createElement("tbody");
-  const rows = [["bracket", "Bracket [t<sub>j</sub>, t<sub>j+1</sub>]"], ["linear", "Linear interp."], ["cubic", "Inverse cubic p(0)"]];
+  const sub = " [t<sub>j</sub>, t<sub>j+1</sub>]";
+  const rows = [["bracket", word("page.bracket-row"), sub], ["linear", word("page.linear-row"), ""], ["cubic", word("page.cubic-row"), ""]];
   const p = s.period, e = p.estimate;
-  for (const [k, name] of rows) {
+  for (const [k, name, after] of rows) {
     const tr = document.createElement("tr");
     const cells = ["–", "–", "–"];
     if (e) {
       const err = k === "bracket" ? e.errors.bracket_mid : e.errors[k];
-      cells[0] = k === "bracket" ? `[${short(e.bracket[0])}, ${short(e.bracket[1])}]` : fix(e[k]);
+      cells[0] = k === "bracket" ? `[${shown(e.bracket[0])}${lang === "pt" ? ";" : ","} ${shown(e.bracket[1])}]` : fix(e[k]);
       cells[1] = sci(err);
       cells[2] = err === null ? "–" : sci(err / p.period);
     }
-    tr.innerHTML = `<td>${name}</td>`;
+    const first = document.createElement("td");
+    first.textContent = name;
+    first.insertAdjacentHTML("beforeend", after);
+    tr.append(first);
     ["est", "err", "rel"].forEach((pre, i) => {
       const td = document.createElement("td");
       td.id = `${pre}${suffix}-${k}`;
@@ -367,8 +385,8 @@ function tableFor(s, suffix) {
   const note = document.createElement("p");
   note.className = "note";
   note.textContent = e
-    ? `Sign change of θ′ at step j = ${e.j}. Bracket error: of its midpoint. Error estimate of p(0) from a 5th node: ${sci(e.cubic_error_estimate)} s.`
-    : "No period from this simulation: " + p.reason;
+    ? word("page.estimate-note", { j: e.j, estimate: sci(e.cubic_error_estimate) })
+    : word("page.no-period", { reason: p.reason });
   wrap.append(cap, t, note);
   return wrap;
 }
@@ -376,14 +394,17 @@ function tableFor(s, suffix) {
 function renderPeriods() {
   const p = sims.a.period;
   const L = sims.a.launch;
-  $("period-label").textContent = !L ? "Period (AGM, eq. 8)"
-    : L.circulates ? "Period, one turn over the top (DLMF 22.19)" : `Period, launched (turning angle ${L.turning_angle_deg.toPrecision(6)}°)`;
+  $("period-label").textContent = !L ? word("page.period-agm")
+    : L.circulates ? word("page.period-turn") : word("page.period-launched", { angle: num(L.turning_angle_deg, 6) });
   $("period-agm").textContent = fix(p.period);
+  // The strip under the swing (a phone's first screen, the projector): the period and the simulation's estimate.
+  $("strip-period").textContent = fix(p.period);
+  $("strip-estimate").textContent = p.estimate ? `${fix(p.estimate.cubic)} s` : word("page.strip-none");
   $("period-small").textContent = fix(p.small_angle_period);
   $("period2-line").hidden = !sims.second;
   if (sims.second) {
     $("period2-agm").textContent = fix(sims.second.period);
-    $("period2-alpha").textContent = short(sims.second.amplitude_deg);
+    $("period2-alpha").textContent = shown(sims.second.amplitude_deg);
   }
   const box = $("tables");
   box.textContent = "";
@@ -397,7 +418,7 @@ function plotConfig() {
   // only way to zoom) and a swipe scrolls the page.
   return {
     displaylogo: false, showSendToCloud: false, showEditInChartStudio: false, showLink: false,
-    responsive: true, scrollZoom: false, displayModeBar: TOUCH ? true : "hover",
+    responsive: true, scrollZoom: false, displayModeBar: TOUCH || view.plotkeys ? true : "hover",
     modeBarButtonsToRemove: ["lasso2d", "select2d", "sendDataToCloud", "editInChartStudio"],
   };
 }
@@ -412,12 +433,44 @@ function plot(id, traces, lay) {
   return Plotly.react(id, traces, lay, plotConfig()).then(() => fitTitle(gd)).then(() => clearModeBar(gd)).then(() => {
     if (!gd.dataset.hooked) {  // the cursor's place follows every redraw (zoom, resize)
       gd.dataset.hooked = "1";
-      gd.on("plotly_afterplot", () => { measure(gd); moveCursors(); });
+      gd.on("plotly_afterplot", () => { measure(gd); moveCursors(); plotKeys(gd); });
       if (id === "plot-theta") gd.on("plotly_relayout", zoomTheta);
     }
     measure(gd);
     moveCursors();
+    plotKeys(gd);
   });
+}
+
+// The mode bar's buttons (7 a plot) are out of the tab order unless the reader asks for them
+// (Show: the plots' buttons by keyboard): Tab goes from control to control, not through 49 buttons.
+function plotKeys(gd) {
+  for (const b of gd.querySelectorAll(".modebar-btn")) b.tabIndex = view.plotkeys ? 0 : -1;
+}
+
+// ---------- projector mode: the swing and the period alone, large, full screen where allowed ----------
+function showProjector() {
+  document.documentElement.classList.toggle("projector", view.projector);
+  $("projector").setAttribute("aria-pressed", String(view.projector));
+  $("projector").textContent = word(view.projector ? "page.projector-leave" : "page.projector");
+}
+
+async function setProjector(on) {
+  view.projector = on;
+  showProjector();
+  writeURL();
+  const root = document.documentElement;
+  try {
+    if (on && root.requestFullscreen && !document.fullscreenElement) await root.requestFullscreen();
+    if (!on && document.fullscreenElement) await document.exitFullscreen();
+  } catch (e) { /* refused (an iframe, a policy): the layout alone */ }
+  relayout();
+}
+
+function relayout() {
+  // The canvas and the plots take their new sizes (plots hidden in the projector are resized when shown again).
+  tick();
+  if (!view.projector && window.Plotly) for (const gd of document.querySelectorAll(".js-plotly-plot")) Plotly.Plots.resize(gd);
 }
 
 function fitTitle(gd) {
@@ -447,6 +500,7 @@ function layout(title, xtitle, ytitle, extra = {}) {
   return {
     title: { text: title, font: { size: 15 }, x: 0.01, xanchor: "left", y: 0.97, yanchor: "top" },
     font: FONT, margin: { l: 70, r: 14, t: 46, b: 52 }, paper_bgcolor: "#fff", plot_bgcolor: "#fff",
+    separators: lang === "pt" ? ", " : ".,",  // the decimal mark and the thousands separator of the ticks and hovers
     dragmode: TOUCH ? false : "zoom", hovermode: TOUCH ? false : "closest",
     xaxis: { title: { text: xtitle }, gridcolor: "#eef1f5", zerolinecolor: "#c9d0dc", automargin: true, tickfont: { size: 13 } },
     yaxis: { title: { text: ytitle }, gridcolor: "#eef1f5", zerolinecolor: "#c9d0dc", automargin: true, exponentformat: "e", tickfont: { size: 13 } },
@@ -476,13 +530,13 @@ function renderTheta() {
     hovertemplate: "t = %{x:.4f} s<br>θ = %{y:.6f} rad<extra></extra>" }];
   if (view.exact) {
     traces.push({ x: s.exact.t, y: s.exact.theta, mode: "lines", line: { color: COLORS.exact, width: 1.2, dash: "dash" },
-      name: "exact motion", hovertemplate: "exact<br>t = %{x:.4f} s<br>θ = %{y:.6f} rad<extra></extra>" });
+      name: word("page.exact-motion"), hovertemplate: word("page.exact") + "<br>t = %{x:.4f} s<br>θ = %{y:.6f} rad<extra></extra>" });
   }
   if (sims.b) {
     traces.push({ x: sims.b.t, y: sims.b.theta, mode: "lines", line: { color: COLORS.b, width: 1.4 }, name: label(sims.b),
       hovertemplate: "t = %{x:.4f} s<br>θ = %{y:.6f} rad<extra></extra>" });
   }
-  const title = marks <= MAX_PERIOD_MARKS ? "Angle θ(t)" : `Angle θ(t): ${marks.toLocaleString("en")} periods of T = ${T.toPrecision(6)} s`;
+  const title = marks <= MAX_PERIOD_MARKS ? word("page.angle") : word("page.angle-periods", { marks: count(marks), period: num(T, 6) });
   plot("plot-theta", traces, layout(title, "t (s)", "θ (rad)", { shapes, annotations, ...twoLines(traces) }));
 }
 
@@ -507,14 +561,14 @@ async function zoomTheta(ev) {
   sims.zoomed = true;
   await Plotly.restyle(gd, update, traces);
   const inView = z.t.filter((t) => t >= t0 && t <= t1).length;
-  $("status").textContent = `Zoomed: θ(t) from a run to t = ${short(t1)} s, ${inView.toLocaleString("en")} points in view.`;
+  $("status").textContent = word("page.zoomed", { t: shown(t1), points: count(inView) });
 }
 
 function renderPhase() {
   const s = sims.a;
   const a = s.input.amplitude;
   // On a second line: a legend entry wider than the plot is cut off at its right (a phone, 1024 px).
-  const orbits = (x) => (x.phase.orbits > 1 ? `<br>${x.phase.orbits} one-period stretches, 0 to ${short(x.phase.t_last)} s` : "");
+  const orbits = (x) => (x.phase.orbits > 1 ? "<br>" + word("page.stretches", { orbits: x.phase.orbits, t: shown(x.phase.t_last) }) : "");
   const traces = [];
   traces.push({ x: s.phase.theta, y: s.phase.omega, mode: "lines", connectgaps: false, line: { color: COLORS.a, width: 1.6 },
     name: label(s) + orbits(s), hovertemplate: "θ = %{x:.5f} rad<br>θ′ = %{y:.5f} rad/s<extra></extra>" });
@@ -525,7 +579,7 @@ function renderPhase() {
   if (view.exact && s.exact_phase) {
     // The exact orbit over the simulated one: the closed curve the simulation should stay on.
     traces.push({ x: s.exact_phase.theta, y: s.exact_phase.omega, mode: "lines", line: { color: COLORS.exact, width: 1.2, dash: "dash" },
-      name: "exact orbit", hovertemplate: "exact<br>θ = %{x:.5f} rad<br>θ′ = %{y:.5f} rad/s<extra></extra>" });
+      name: word("page.exact-orbit"), hovertemplate: word("page.exact") + "<br>θ = %{x:.5f} rad<br>θ′ = %{y:.5f} rad/s<extra></extra>" });
   }
   const lines = traces.length;
   // P: the release, (α, 0) at rest or (α, θ′₀) for a launch.
@@ -533,7 +587,7 @@ function renderPhase() {
   traces.push({ x: [a], y: [w0], mode: "markers", marker: { symbol: "circle-open", size: 16, line: { width: 2.5, color: COLORS.p } },
     name: "P = (α, θ′₀)", showlegend: false, hovertemplate: "P = (α, θ′₀)<br>α = %{x:.6f} rad<br>θ′₀ = %{y:.6f} rad/s<extra></extra>" });
   // One method has no legend: the title says which stretch of time the sampled orbits span.
-  const title = s.phase.orbits > 1 ? `Phase portrait: ${s.phase.orbits} periods, 0 to ${short(s.phase.t_last)} s` : "Phase portrait (θ, θ′)";
+  const title = s.phase.orbits > 1 ? word("page.phase-periods", { orbits: s.phase.orbits, t: shown(s.phase.t_last) }) : word("page.phase");
   plot("plot-phase", traces, layout(title, "θ (rad)", "θ′ (rad/s)", {
     annotations: [{ x: a, y: w0, text: "P", showarrow: true, arrowhead: 0, ax: 22, ay: -22, font: { color: COLORS.p } }],
     ...twoLines(traces.slice(0, lines)),
@@ -554,14 +608,14 @@ function renderError() {
   const traces = methodLines((s) => s.error.t, y, log ? "t = %{x:.4f} s<br>|θ − θ_exact| = %{y:.3e} rad<extra></extra>"
     : "t = %{x:.4f} s<br>θ − θ_exact = %{y:.3e} rad<extra></extra>");
   const per = sims.a.error.per_period;
-  const extra = log ? { yaxis: { type: "log", title: { text: "|error| (rad)" }, gridcolor: "#eef1f5", exponentformat: "power", automargin: true, tickfont: { size: 13 } } } : {};
-  plot("plot-error", traces, layout(log ? "Global error |θ_sim − θ_exact|" : "Global error θ_sim − θ_exact",
-    `t (s): ${per.toPrecision(3)} samples a period`, "error (rad)", { ...extra, ...twoLines(traces) }));
+  const extra = log ? { yaxis: { type: "log", title: { text: word("page.error-abs-axis") }, gridcolor: "#eef1f5", exponentformat: "power", automargin: true, tickfont: { size: 13 } } } : {};
+  plot("plot-error", traces, layout(word(log ? "page.error-log" : "page.error-plot"),
+    word("page.per-period", { samples: num(per, 3) }), word("page.error-axis"), { ...extra, ...twoLines(traces) }));
 }
 
 function renderEnergy() {
   const traces = methodLines((s) => s.energy.t, (s) => s.energy.drift, "t = %{x:.4f} s<br>(E − E₀)/(mgl) = %{y:.3e}<extra></extra>");
-  plot("plot-energy", traces, layout("Energy error (E − E₀)/(m g l)", "t (s)", "drift", twoLines(traces)));
+  plot("plot-energy", traces, layout(word("page.energy-plot"), "t (s)", word("page.drift"), twoLines(traces)));
 }
 
 function renderEstimates() {
@@ -577,41 +631,42 @@ function renderEstimates() {
     const half = (e.bracket[1] - e.bracket[0]) / 2;
     const open = faint ? "-open" : "";
     const color = (c) => (faint ? COLORS.b : c);
+    const [br, li, cu, er] = [word("page.bracket"), word("page.linear"), word("page.inverse-cubic"), word("page.error-word")];
     traces.push(
-      { x: [dx], y: [e.bracket_mid - T], mode: "markers", name: `${s.input.method} bracket`, marker: { color: color(COLORS.bracket), size: 9, symbol: "line-ew-open" },
-        error_y: { type: "data", array: [half], color: color(COLORS.bracket), thickness: 2, width: 8 }, hovertemplate: `${s.input.method} bracket [${e.bracket[0]}, ${e.bracket[1]}] s<extra></extra>` },
-      { x: [1 + dx], y: [e.linear - T], mode: "markers", name: `${s.input.method} linear`, marker: { color: color(COLORS.linear), size: 11, symbol: "circle" + open, line: { width: 2, color: color(COLORS.linear) } },
-        hovertemplate: `${s.input.method} linear ${e.linear} s<br>error %{y:.3e} s<extra></extra>` },
-      { x: [2 + dx], y: [e.cubic - T], mode: "markers", name: `${s.input.method} cubic`, marker: { color: color(COLORS.cubic), size: 11, symbol: "diamond" + open, line: { width: 2, color: color(COLORS.cubic) } },
-        error_y: { type: "data", array: [Math.abs(e.cubic_error_estimate || 0)], color: color(COLORS.cubic) }, hovertemplate: `${s.input.method} cubic ${e.cubic} s<br>error %{y:.3e} s<extra></extra>` },
+      { x: [dx], y: [e.bracket_mid - T], mode: "markers", name: `${s.input.method} ${br}`, marker: { color: color(COLORS.bracket), size: 9, symbol: "line-ew-open" },
+        error_y: { type: "data", array: [half], color: color(COLORS.bracket), thickness: 2, width: 8 }, hovertemplate: `${s.input.method} ${br} [${local(e.bracket[0])}${lang === "pt" ? ";" : ","} ${local(e.bracket[1])}] s<extra></extra>` },
+      { x: [1 + dx], y: [e.linear - T], mode: "markers", name: `${s.input.method} ${li}`, marker: { color: color(COLORS.linear), size: 11, symbol: "circle" + open, line: { width: 2, color: color(COLORS.linear) } },
+        hovertemplate: `${s.input.method} ${li} ${local(e.linear)} s<br>${er} %{y:.3e} s<extra></extra>` },
+      { x: [2 + dx], y: [e.cubic - T], mode: "markers", name: `${s.input.method} ${cu}`, marker: { color: color(COLORS.cubic), size: 11, symbol: "diamond" + open, line: { width: 2, color: color(COLORS.cubic) } },
+        error_y: { type: "data", array: [Math.abs(e.cubic_error_estimate || 0)], color: color(COLORS.cubic) }, hovertemplate: `${s.input.method} ${cu} ${local(e.cubic)} s<br>${er} %{y:.3e} s<extra></extra>` },
     );
   }
   if (!traces.length) {
-    plot("plot-estimates", [], layout("Period estimates − AGM period T", "", "estimate − T (s)", {
-      annotations: [{ text: "no period from this simulation", showarrow: false, xref: "paper", yref: "paper", x: 0.5, y: 0.5 }],
+    plot("plot-estimates", [], layout(word("page.estimates-plot"), "", word("page.estimate-axis"), {
+      annotations: [{ text: word("page.no-period-plot"), showarrow: false, xref: "paper", yref: "paper", x: 0.5, y: 0.5 }],
       xaxis: { visible: false }, yaxis: { visible: false },
     }));
     return;
   }
-  const who = two ? `: ${sims.a.input.method} filled, ${sims.b.input.method} open` : "";
-  plot("plot-estimates", traces, layout(`Estimates − T, T = ${T.toPrecision(10)} s`, "estimate" + who, "estimate − T (s)", {
-    xaxis: { tickvals: [0, 1, 2], ticktext: ["bracket", "linear", "cubic p(0)"], range: [-0.5, 2.5], tickfont: { size: 13 },
-      automargin: true, zeroline: false, showgrid: false, title: { text: "estimate" + who, font: { size: 13 } } },
+  const who = two ? ": " + word("page.filled-open", { a: sims.a.input.method, b: sims.b.input.method }) : "";
+  plot("plot-estimates", traces, layout(word("page.estimates-t", { period: num(T, 10) }), word("page.estimate") + who, word("page.estimate-axis"), {
+    xaxis: { tickvals: [0, 1, 2], ticktext: [word("page.bracket"), word("page.linear"), word("page.cubic")], range: [-0.5, 2.5], tickfont: { size: 13 },
+      automargin: true, zeroline: false, showgrid: false, title: { text: word("page.estimate") + who, font: { size: 13 } } },
     shapes: [{ type: "line", xref: "paper", x0: 0, x1: 1, y0: 0, y1: 0, line: { color: COLORS.exact, width: 1.5, dash: "dash" } }],
-    annotations: [{ xref: "paper", x: 1, y: 0, text: "AGM period", showarrow: false, xanchor: "right", yanchor: "bottom", font: { size: 12 } }],
+    annotations: [{ xref: "paper", x: 1, y: 0, text: word("page.agm-period"), showarrow: false, xanchor: "right", yanchor: "bottom", font: { size: 12 } }],
   }));
 }
 
 function renderConvergence(body, err, body2) {
   if (!body) {
-    plot("plot-convergence", [], layout("Period error vs step h", "h (s)", "|error| (s)", {
-      annotations: [{ text: err ? err.message : "no data", showarrow: false, xref: "paper", yref: "paper", x: 0.5, y: 0.5 }],
+    plot("plot-convergence", [], layout(word("page.convergence-plot"), "h (s)", word("page.abs-error-s"), {
+      annotations: [{ text: err ? err.message : word("page.no-data"), showarrow: false, xref: "paper", yref: "paper", x: 0.5, y: 0.5 }],
       xaxis: { visible: false }, yaxis: { visible: false },
     }));
     return;
   }
   const rows = body.rows.filter((r) => r.estimate);
-  if (!rows.length) { renderConvergence(null, { message: "no period from any of these steps" }); return; }
+  if (!rows.length) { renderConvergence(null, { message: word("page.no-period-steps") }); return; }
   const series = (rs, key, name, color, symbol) => {
     const pts = rs.filter((r) => r.estimate && r.estimate.errors[key] > 0);
     return { x: pts.map((r) => r.step), y: pts.map((r) => r.estimate.errors[key]), mode: "lines+markers", name,
@@ -620,15 +675,15 @@ function renderConvergence(body, err, body2) {
   const two = body2 !== null;
   const tag = (m) => (two ? ` (${m})` : "");
   const traces = [
-    series(rows, "bracket_mid", "bracket midpoint" + tag(body.method), COLORS.bracket, "square"),
-    series(rows, "cubic", "inverse cubic" + tag(body.method), COLORS.cubic, "diamond"),
-    series(rows, "linear", "linear" + tag(body.method), COLORS.linear, "circle-open"),
+    series(rows, "bracket_mid", word("page.bracket-midpoint") + tag(body.method), COLORS.bracket, "square"),
+    series(rows, "cubic", word("page.inverse-cubic") + tag(body.method), COLORS.cubic, "diamond"),
+    series(rows, "linear", word("page.linear") + tag(body.method), COLORS.linear, "circle-open"),
   ];
   traces[2].line.dash = "dash";
   if (two) {
     const rows2 = body2.rows.filter((r) => r.estimate);
-    const c2 = series(rows2, "cubic", `inverse cubic (${body2.method})`, COLORS.b, "diamond-open");
-    const l2 = series(rows2, "linear", `linear (${body2.method})`, COLORS.b, "circle-open");
+    const c2 = series(rows2, "cubic", `${word("page.inverse-cubic")} (${body2.method})`, COLORS.b, "diamond-open");
+    const l2 = series(rows2, "linear", `${word("page.linear")} (${body2.method})`, COLORS.b, "circle-open");
     l2.line.dash = "dot";
     traces.push(c2, l2);
   }
@@ -636,20 +691,20 @@ function renderConvergence(body, err, body2) {
   const first = rows.find((r) => r.estimate.errors.cubic > 0);
   if (first && rows.length > 1) {
     const h0 = first.step, e0 = first.estimate.errors.cubic, h1 = rows[rows.length - 1].step;
-    traces.push({ x: [h0, h1], y: [e0, e0 * Math.pow(h1 / h0, body.order)], mode: "lines", name: `slope ${body.order}`,
+    traces.push({ x: [h0, h1], y: [e0, e0 * Math.pow(h1 / h0, body.order)], mode: "lines", name: word("page.slope", { order: body.order }),
       line: { color: "#b8c0cc", dash: "dash", width: 1.5 }, hoverinfo: "skip" });
   }
   const h = sims.a ? sims.a.input.step : null;
   const gd = $("plot-convergence");
   const xs = traces.flatMap((t) => t.x).concat(h ? [h] : []), ys = traces.flatMap((t) => t.y);
-  plot("plot-convergence", traces, layout(`Period error vs step h (${body.method}${two ? ", " + body2.method : ""})`, "h (s)", "|estimate − T| (s)", {
+  plot("plot-convergence", traces, layout(word("page.convergence-of", { methods: body.method + (two ? ", " + body2.method : "") }), "h (s)", word("page.abs-estimate-error"), {
     xaxis: { type: "log", title: { text: "h (s)" }, gridcolor: "#eef1f5", exponentformat: "power", automargin: true, tickfont: { size: 13 },
       ...logTicks(xs, gd.clientWidth - 90, 56) },
-    yaxis: { type: "log", title: { text: "|estimate − T| (s)" }, gridcolor: "#eef1f5", exponentformat: "power", automargin: true, tickfont: { size: 13 },
+    yaxis: { type: "log", title: { text: word("page.abs-estimate-error") }, gridcolor: "#eef1f5", exponentformat: "power", automargin: true, tickfont: { size: 13 },
       ...logTicks(ys, gd.clientHeight - 170, 30) },
     showlegend: true, margin: { l: 70, r: 14, t: 46, b: two ? 150 : 110 },
     shapes: h ? [{ type: "line", x0: h, x1: h, yref: "paper", y0: 0, y1: 1, line: { color: COLORS.p, dash: "dot", width: 1 } }] : [],
-    annotations: h ? [{ x: Math.log10(h), yref: "paper", y: 1, text: "h in use", showarrow: false, yanchor: "bottom", font: { color: COLORS.p, size: 12 } }] : [],
+    annotations: h ? [{ x: Math.log10(h), yref: "paper", y: 1, text: word("page.h-in-use"), showarrow: false, yanchor: "bottom", font: { color: COLORS.p, size: 12 } }] : [],
   }));
 }
 
@@ -683,14 +738,14 @@ async function renderRatio() {
     marker: { color, size: 12, line: { color: "#fff", width: 1.5 } }, hovertemplate: `${name}<br>α = %{x:.4g}°<br>T/T0 = %{y:.6f}<extra></extra>` });
   const p = sims.a.period, L = sims.a.launch;
   // A launched pendulum sits on the curve at its turning angle; one that goes round is not on it.
-  if (!L) traces.push(mark(p, COLORS.p, "this pendulum"));
-  else if (!L.circulates) traces.push(mark({ amplitude_deg: L.turning_angle_deg, period: p.period, small_angle_period: p.small_angle_period }, COLORS.p, "this pendulum"));
-  if (sims.second) traces.push(mark(sims.second, COLORS.second, "second pendulum"));
+  if (!L) traces.push(mark(p, COLORS.p, word("page.this-pendulum")));
+  else if (!L.circulates) traces.push(mark({ amplitude_deg: L.turning_angle_deg, period: p.period, small_angle_period: p.small_angle_period }, COLORS.p, word("page.this-pendulum")));
+  if (sims.second) traces.push(mark(sims.second, COLORS.second, word("page.second-pendulum")));
   // The legend inside, top left: below 90° every curve is near 1, the corner is empty.
-  plot("plot-ratio", traces, layout("Period against amplitude: T(α)/T₀", "α (deg)", "T / T₀", {
+  plot("plot-ratio", traces, layout(word("page.ratio-plot"), word("page.alpha-deg"), "T / T₀", {
     showlegend: true, margin: { l: 70, r: 14, t: 46, b: 52 },
     legend: { x: 0.01, y: 0.99, xanchor: "left", yanchor: "top", bgcolor: "rgba(255,255,255,0.85)", font: { size: 12 } },
-    xaxis: { title: { text: "α (deg)" }, range: [0, 180], dtick: 30, gridcolor: "#eef1f5", automargin: true, tickfont: { size: 13 } },
+    xaxis: { title: { text: word("page.alpha-deg") }, range: [0, 180], dtick: 30, gridcolor: "#eef1f5", automargin: true, tickfont: { size: 13 } },
     yaxis: { title: { text: "T / T₀" }, range: [0.9, 4.2], gridcolor: "#eef1f5", automargin: true, tickfont: { size: 13 } },
   }));
 }
@@ -762,7 +817,7 @@ function moveCursors() {
 function renderAnimNote() {
   const f = sims.a.frames;
   $("anim-note").textContent = f.per_period >= 8 ? ""
-    : `The swing is faster than the animation can show (${f.per_period.toPrecision(2)} samples a period): it jumps between the simulation's states at their times.`;
+    : word("page.too-fast", { samples: num(f.per_period, 2) });
 }
 
 // ---------- energies of the first pendulum now, in m g l: K = l θ′²/(2g), U = 1 − cos θ ----------
@@ -783,10 +838,10 @@ function renderBars() {
     // A table of bars: K, U, E down, the exact motion and the simulation across.
     box.dataset.built = "1";
     const head = (text) => { const e = document.createElement("span"); e.className = "head"; e.textContent = text; return e; };
-    box.append(head("m g l"), head("exact"), head("simulated"));
-    for (const [k, name, color] of [["K", "kinetic", "#e07a1f"], ["U", "potential", "#2f6fdb"], ["E", "total", "#1d2330"]]) {
+    box.append(head("m g l"), head(word("page.exact")), head(word("page.simulated")));
+    for (const [k, name, color] of [["K", "page.kinetic", "#e07a1f"], ["U", "page.potential", "#2f6fdb"], ["E", "page.total", "#1d2330"]]) {
       const label = document.createElement("span");
-      label.textContent = name;
+      label.textContent = word(name);
       box.append(label);
       for (const [who] of rows) {
         const cell = document.createElement("span");
@@ -811,7 +866,7 @@ function renderBars() {
     for (const k of ["K", "U", "E"]) {
       const x = e ? e[k] : null;
       $(`bar-${who}-${k}`).style.width = x === null ? "0" : `${Math.min(100, Math.max(0, 100 * x / top)).toFixed(1)}%`;
-      $(`val-${who}-${k}`).textContent = x === null ? "–" : x.toFixed(3);
+      $(`val-${who}-${k}`).textContent = x === null ? "–" : local(x.toFixed(3));
     }
   }
 }
@@ -824,14 +879,16 @@ function niceCeil(x) {
 }
 
 function rulerText(len) {
-  return len >= 1 ? `${short(len)} m` : len >= 1e-3 ? `${short(len * 1e3)} mm` : `${len.toExponential(0)} m`;
+  return len >= 1 ? `${shown(len)} m` : len >= 1e-3 ? `${shown(len * 1e3)} mm` : `${local(len.toExponential(0))} m`;
 }
 
 function draw() {
   const c = $("canvas");
   const dpr = window.devicePixelRatio || 1;
-  const W = c.clientWidth || 420, H = Math.round(W * 340 / 420);
-  if (c.width !== Math.round(W * dpr)) { c.width = Math.round(W * dpr); c.height = Math.round(H * dpr); }
+  // The canvas's shape is the style's (420:340, or the projector's height): the drawing fits it.
+  const W = c.clientWidth || 420, H = c.clientHeight || Math.round(W * 340 / 420);
+  if (c.width !== Math.round(W * dpr) || c.height !== Math.round(H * dpr)) { c.width = Math.round(W * dpr); c.height = Math.round(H * dpr); }
+  const fs = view.projector ? 24 : 13;  // the canvas's text in px: 24 px on a projector
   const g = c.getContext("2d");
   g.setTransform(dpr, 0, 0, dpr, 0, 0);
   g.clearRect(0, 0, W, H);
@@ -858,8 +915,8 @@ function draw() {
     const y = H - 10;
     g.beginPath(); g.moveTo(W - 10 - ruler.px, y); g.lineTo(W - 10, y);
     g.moveTo(W - 10 - ruler.px, y - 5); g.lineTo(W - 10 - ruler.px, y + 3); g.moveTo(W - 10, y - 5); g.lineTo(W - 10, y + 3); g.stroke();
-    g.font = "12px system-ui, sans-serif"; g.textAlign = "right";
-    g.fillText("ruler " + ruler.text, W - 10, y - 8); g.textAlign = "left";
+    g.font = `${fs - 1}px system-ui, sans-serif`; g.textAlign = "right";
+    g.fillText(word("page.ruler", { length: ruler.text }), W - 10, y - 8); g.textAlign = "left";
   }
   if (!s) return null;
   const side = view.side;
@@ -893,18 +950,18 @@ function draw() {
   }
   for (const p of pivots) { g.fillStyle = "#39425a"; g.beginPath(); g.arc(p.x, p.y, 4.5, 0, 2 * Math.PI); g.fill(); }
   if (window.lab && anim.drag === null) window.lab.drawOver(g, { W, H, pivots, radii, lengths, side });  // vectors
-  g.fillStyle = "#454e62"; g.font = "13px system-ui, sans-serif";
-  g.fillText(`l = ${short(s.input.length)} m`, 10, 18);
-  g.fillText(`α = ${short(anim.drag !== null ? Math.abs(anim.drag) * 180 / Math.PI : s.input.amplitude_deg)}°`, 10, 35);
+  g.fillStyle = "#454e62"; g.font = `${fs}px system-ui, sans-serif`;
+  g.fillText(`l = ${shown(s.input.length)} m`, 10, 1.4 * fs);
+  g.fillText(`α = ${shown(anim.drag !== null ? Math.abs(anim.drag) * 180 / Math.PI : s.input.amplitude_deg)}°`, 10, 2.7 * fs);
   if (two) {
     g.fillStyle = COLORS.second; g.textAlign = "right";
-    g.fillText(`l₂ = ${short(sims.second.length)} m`, W - 10, 18);
-    g.fillText(`α₂ = ${short(sims.second.amplitude_deg)}°`, W - 10, 35);
+    g.fillText(`l₂ = ${shown(sims.second.length)} m`, W - 10, 1.4 * fs);
+    g.fillText(`α₂ = ${shown(sims.second.amplitude_deg)}°`, W - 10, 2.7 * fs);
     g.textAlign = "left";
   }
   const main = bobs[0];
-  $("clock").textContent = main.theta === null ? `t = ${main.t.toFixed(3)} s   θ: not a number (blown up)`
-    : `t = ${main.t.toFixed(3)} s   θ = ${(main.theta * 180 / Math.PI).toFixed(2)}°`;
+  $("clock").textContent = main.theta === null ? `t = ${local(main.t.toFixed(3))} s   ${word("page.blown-up")}`
+    : `t = ${local(main.t.toFixed(3))} s   θ = ${local((main.theta * 180 / Math.PI).toFixed(2))}°`;
   return st;
 }
 
@@ -938,7 +995,7 @@ function setPlaying(on) {
 // side it was dragged to the side it is released from (the motion from -α is the mirror image).
 function canvasPoint(ev) {
   const r = $("canvas").getBoundingClientRect();
-  return { x: ev.clientX - r.left, y: ev.clientY - r.top, W: r.width, H: r.width * 340 / 420 };
+  return { x: ev.clientX - r.left, y: ev.clientY - r.top, W: r.width, H: r.height };
 }
 
 function pivotOf(p) {
@@ -1021,9 +1078,8 @@ function addMethods(select, methods, group = null) {
   for (const m of methods) {
     const o = document.createElement("option");
     o.value = m.name;
-    o.textContent = `${m.name} (order ${m.order})`;
+    o.textContent = word(m.order === 1 ? "page.euler" : "page.order", { name: m.name, order: m.order });
     o.title = m.description;
-    if (m.order === 1) o.textContent = `${m.name}: Euler (order 1)`;
     parent.append(o);
   }
 }
@@ -1033,6 +1089,7 @@ async function init() {
   config = (await getJSON("/api/config?lang=" + lang)).body;
   applyWords();
   document.title = word("page.title");
+  for (const o of $("speed").options) o.textContent = `${local(o.value)}×`;
   $("lang").value = lang;
   $("lang").addEventListener("change", () => {
     // The page in the other language: its words are read once, at load; the URL keeps the choice.
@@ -1041,7 +1098,7 @@ async function init() {
   });
   for (const sel of [$("method"), $("method2")]) {
     addMethods(sel, config.methods);
-    addMethods(sel, config.family || [], "Taylor method of order P");
+    addMethods(sel, config.family || [], word("page.taylor-family"));
   }
   for (const [name, g] of Object.entries(config.g_presets)) {
     const b = document.createElement("button");
@@ -1061,6 +1118,12 @@ async function init() {
   }
   for (const k of ["method", "method2"]) $(k).addEventListener("change", () => schedule(0));
   $("unit").addEventListener("change", () => { convertAmplitude(); syncSlider("amplitude"); schedule(0); });
+  $("projector").addEventListener("click", () => setProjector(!view.projector));
+  document.addEventListener("fullscreenchange", () => { if (!document.fullscreenElement && view.projector) setProjector(false); });
+  $("plotkeys").addEventListener("change", () => {
+    readForm(); writeURL();
+    if (sims.a) { renderTheta(); renderPhase(); renderError(); renderEnergy(); renderEstimates(); renderRatio(); updateConvergence(seq); }
+  });
   for (const k of ["exact", "scale", "errlog"]) {
     $(k).addEventListener("change", () => {
       readForm(); writeURL();
