@@ -130,6 +130,7 @@ def serve(port: int, host: str, allow_host: tuple[str, ...]) -> None:
 
     import threading
 
+    from ..core.interrupt import check_signals
     from ..engine.warm import warm_kernels
     from ..web import create_app
     from ..web.server import run
@@ -147,4 +148,8 @@ def serve(port: int, host: str, allow_host: tuple[str, ...]) -> None:
             click.echo(f"  {u}", err=True)
     if exposed(host):
         click.echo(EXPOSED, err=True)
-    run(create_app(allowed_hosts(host, allow_host)), host, port)
+    app = create_app(allowed_hosts(host, allow_host))
+    # A Ctrl+C that came while the imports ran in a callback (interrupt.unraisable) ends the
+    # command here; from the server's start, uvicorn's own handler holds it.
+    check_signals()
+    run(app, host, port, before=check_signals)

@@ -26,8 +26,10 @@ from __future__ import annotations
 
 import contextlib
 import signal
+import sys
 import threading
 from collections.abc import Callable, Iterable, Iterator
+from typing import Any
 
 #: The signals that end a command: Ctrl+C, ``kill``, a closed terminal (SIGHUP), Ctrl+\\ (SIGQUIT).
 ENDING = tuple(getattr(signal, n) for n in ("SIGINT", "SIGTERM", "SIGHUP", "SIGQUIT") if hasattr(signal, n))
@@ -75,11 +77,33 @@ def interrupt_handler(signum: int, frame: object) -> None:
 
 def install() -> None:
     """The CLI's handlers of every ending signal (main thread only); an ignored signal
-    (``nohup``'s SIGHUP) stays ignored."""
+    (``nohup``'s SIGHUP) stays ignored. Also :func:`unraisable`, for the signals raised
+    where Python cannot propagate them."""
     for s in ENDING:
         if signal.getsignal(s) is signal.SIG_IGN:
             continue
         signal.signal(s, interrupt_handler if s == signal.SIGINT else terminate_handler)
+    if sys.unraisablehook is not unraisable:
+        _hooks[:] = [sys.unraisablehook]
+        sys.unraisablehook = unraisable
+
+
+#: The unraisable hook :func:`unraisable` hands every other exception to.
+_hooks: list[Callable[[Any], object]] = []
+
+
+def unraisable(info: Any) -> None:
+    """``sys.unraisablehook``: a ``KeyboardInterrupt`` (or :class:`Terminated`) of a signal
+    in :data:`received` is kept silent, anything else goes to the hook before it.
+
+    A handler's exception raised while Python runs a callback (a weak reference's, such as
+    the import system's module locks' while another thread imports, or a ``__del__``) cannot
+    propagate: Python prints "Exception ignored" and goes on. The signal is in
+    :data:`received`, and :func:`check_signals` raises it again where the command can end.
+    """
+    if isinstance(info.exc_value, KeyboardInterrupt) and received:
+        return
+    (_hooks[0] if _hooks else sys.__unraisablehook__)(info)
 
 
 def check_signals() -> None:

@@ -30,6 +30,7 @@ import asyncio
 import logging
 import os
 import time
+from collections.abc import Callable
 from typing import Any, ClassVar
 
 import h11
@@ -232,8 +233,12 @@ def quiet_accept_errors(loop: asyncio.AbstractEventLoop, every: float = 60.0) ->
     loop.set_exception_handler(handler)
 
 
-def run(app: Any, host: str, port: int, **limits: Any) -> None:
-    """Serve ``app`` on ``host:port`` until Ctrl+C, with the bounds of :func:`protocol` (``limits``)."""
+def run(app: Any, host: str, port: int, before: Callable[[], None] | None = None, **limits: Any) -> None:
+    """Serve ``app`` on ``host:port`` until Ctrl+C, with the bounds of :func:`protocol` (``limits``).
+
+    ``before``: called after uvicorn's import, just before the server takes Ctrl+C over
+    (the CLI's check for a signal that some callback swallowed on the way).
+    """
     import uvicorn
 
     config = uvicorn.Config(app, host=host, port=port, http=protocol(**limits), loop="asyncio",
@@ -243,5 +248,8 @@ def run(app: Any, host: str, port: int, **limits: Any) -> None:
     async def main() -> None:
         quiet_accept_errors(asyncio.get_running_loop())
         await server.serve()
+
+    if before is not None:
+        before()
 
     asyncio.run(main())  # Ctrl+C: uvicorn shuts down, then raises KeyboardInterrupt as uvicorn.run does
