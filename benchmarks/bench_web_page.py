@@ -11,24 +11,33 @@ tests drive), on loopback. Side by side in one run, as ratios:
             (the ``input`` event, debounce of 200 ms included) to the new period on the page
             and to the angle plot redrawn, median of ``TYPED`` amplitudes
 4. frames   animation frames a second while playing, and the script time of one frame
-            (the swing, the photogate, the energy bars, the four plot cursors)
+            (the swing, the lab's photogates, stopwatch and energies, the energy bars, the
+            four plot cursors)
 
 The aims: at most 1.5 MB on the wire, the first plot within 1.5 s, a new period
 within 700 ms of typing, 60 frames a second. Run: ``.venv/bin/python benchmarks/bench_web_page.py``
-(about a minute).
+(about a minute); ``--write`` puts its table into ``docs/performance.md`` between
+``<!-- page -->`` and ``<!-- /page -->``.
 """
 from __future__ import annotations
 
 import os
 import statistics
+import subprocess
 import sys
 from pathlib import Path
 
 from playwright.sync_api import sync_playwright
 
 sys.path.insert(0, str(Path(__file__).resolve().parent.parent / "tests"))
+from _peers import write_between  # beside this file
+
 from _browser import find_chromium
 from served import serve_in_child
+
+ROOT = Path(__file__).resolve().parent.parent
+DOC = ROOT / "docs" / "performance.md"
+BEGIN, END = "<!-- page -->", "<!-- /page -->"
 
 URL = "/?length=3.5&amplitude=144&unit=deg&step=1e-3&t_max=20"
 COLD = 5
@@ -42,7 +51,7 @@ WATCH = """
 window.__marks = {};
 new MutationObserver(() => {
   const m = window.__marks;
-  const p = document.getElementById('period-exact');
+  const p = document.getElementById('period-agm');
   if (!m.period && p && p.textContent !== '–') m.period = performance.now();
   if (!m.plot && document.querySelector('.js-plotly-plot .main-svg')) m.plot = performance.now();
 }).observe(document, {subtree: true, childList: true, characterData: true});
@@ -80,7 +89,7 @@ def typing(browser, base: str, typed: int = TYPED) -> tuple[list[float], list[fl
     for k in range(typed):
         amplitude = 100 + 5 * k
         ms = page.evaluate("""(a) => new Promise((done) => {
-            const gd = document.getElementById('plot-theta'), period = document.getElementById('period-exact');
+            const gd = document.getElementById('plot-theta'), period = document.getElementById('period-agm');
             const before = period.textContent, t0 = performance.now(); let tp = null;
             const obs = new MutationObserver(() => { if (tp === null && period.textContent !== before) tp = performance.now(); });
             obs.observe(period, {childList: true, characterData: true, subtree: true});
@@ -117,8 +126,10 @@ def measure(cold: int = COLD, typed: int = TYPED) -> dict:
         gz = [cold_load(browser, base, False) for _ in range(cold)]
         plain = [cold_load(browser, base, True) for _ in range(cold)]
         to_period, to_plot, spent, fps = typing(browser, base, typed)
+        version = browser.version
         browser.close()
-    return {"gz": gz, "plain": plain, "to_period": to_period, "to_plot": to_plot, "spent": spent, "fps": fps}
+    return {"gz": gz, "plain": plain, "to_period": to_period, "to_plot": to_plot, "spent": spent, "fps": fps,
+            "browser": version}
 
 
 def page_rows(cold: int = COLD, typed: int = TYPED) -> list[dict]:
@@ -142,7 +153,36 @@ def page_rows(cold: int = COLD, typed: int = TYPED) -> list[dict]:
     ]
 
 
+def table(m: dict, load: tuple[float, float]) -> str:
+    """The measurements as a Markdown table, medians and maxima against the aims (the shape
+    ``--write`` puts into docs/performance.md), and a line saying where they were taken."""
+    med = statistics.median
+    gz = [r[0] / 1e3 for r in m["gz"]]
+    rows = [
+        ("cold page on the wire, gzip (kB)", gz, AIMS["wire"] / 1e3),
+        ("the same without compression (kB)", [r[0] / 1e3 for r in m["plain"]], None),
+        ("navigation to the period shown (ms)", [r[1] for r in m["gz"]], None),
+        ("navigation to the first plot (ms)", [r[2] for r in m["gz"]], AIMS["plot"]),
+        ("a new amplitude typed to its period shown, 200 ms debounce included (ms)", m["to_period"], AIMS["period"]),
+        ("the same to the angle plot redrawn (ms)", m["to_plot"], None),
+        ("script per animation frame (ms)", m["spent"], None),
+    ]
+    lines = ["| measure | median | max | aim | median / aim |", "|---|---:|---:|---:|---:|"]
+    for name, values, aim in rows:
+        mid = med(values)
+        lines.append(f"| {name} | {mid:.3g} | {max(values):.3g} | {'' if aim is None else f'{aim:.4g}'} | "
+                     f"{'' if aim is None else f'{mid / aim:.2f}'} |")
+    lines.append(f"| animation frames a second | {m['fps']:.3g} | | {AIMS['fps']:.3g} | {m['fps'] / AIMS['fps']:.2f} |")
+    commit = subprocess.run(["git", "rev-parse", "--short", "HEAD"], cwd=ROOT, capture_output=True, text=True).stdout.strip()
+    lines.append("")
+    lines.append(f"One run of `benchmarks/bench_web_page.py` at {commit or 'this tree'}: headless Chromium "
+                 f"{m['browser']}, {os.cpu_count()} CPUs, load average {load[0]:.1f} at the start, {load[1]:.1f} at the end; "
+                 f"medians of {len(m['gz'])} cold loads and {len(m['to_period'])} typed amplitudes.")
+    return "\n".join(lines)
+
+
 def main() -> None:
+    start_load = os.getloadavg()[0]
     m = measure()
     gz, plain, to_period, to_plot, spent, fps = (m[k] for k in ("gz", "plain", "to_period", "to_plot", "spent", "fps"))
     med = statistics.median
@@ -164,6 +204,9 @@ def main() -> None:
               ("period <= 700 ms after typing", med(to_period) <= AIMS["period"]),
               ("about 60 frames a second", fps >= 0.92 * AIMS["fps"])]
     print("aims: " + "; ".join(f"{name}: {'met' if ok else 'NOT met'}" for name, ok in checks))
+    if "--write" in sys.argv:
+        write_between(DOC, BEGIN, END, table(m, (start_load, os.getloadavg()[0])))
+        print(f"written to {DOC}")
 
 
 if __name__ == "__main__":

@@ -234,8 +234,11 @@ async function update() {
   renderAnimNote();
   // The plots after the numbers and the swing: the period is on the page before plotly starts.
   await nextFrame();
+  await plotlyReady;
   if (my !== seq) return;
   renderTheta();
+  await nextFrame();  // the angle plot painted before the other six are drawn (each takes a frame or more)
+  if (my !== seq) return;
   renderPhase();
   renderError();
   renderEnergy();
@@ -246,6 +249,11 @@ async function update() {
 }
 
 const nextFrame = () => new Promise((resolve) => requestAnimationFrame(() => resolve()));
+// plotly.js loads async (index.html), while the first requests run: only the plots wait for it.
+const plotlyReady = new Promise((resolve) => {
+  const tag = document.querySelector('script[src$="plotly.min.js"]');
+  if (window.Plotly || !tag) resolve(); else tag.addEventListener("load", () => resolve());
+});
 
 async function updateConvergence(my) {
   if (sims.a.launch) {  // the estimates time a release at rest
@@ -430,6 +438,7 @@ const TITLE_GAP = 3;
 
 function plot(id, traces, lay) {
   const gd = $(id);
+  if (!window.Plotly) return Promise.resolve();  // a redraw asked for before plotly.js came: update() draws it
   return Plotly.react(id, traces, lay, plotConfig()).then(() => fitTitle(gd)).then(() => clearModeBar(gd)).then(() => {
     if (!gd.dataset.hooked) {  // the cursor's place follows every redraw (zoom, resize)
       gd.dataset.hooked = "1";
