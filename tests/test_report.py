@@ -455,15 +455,19 @@ def test_every_group_problem3_matches_plain_python(group_docs):
             side = "below" if t_hat < j * 0.2 else "above" if t_hat > (j + 1) * 0.2 else "inside"
             assert doc.choices["p3b.bracket"] == f"p3b.bracket.{side}"
             assert f"t_{j} = {num(j * 0.2, 6)}" in sentence and f"t_{j + 1} = {num((j + 1) * 0.2, 6)}" in sentence
-            seen = max(t_hat, (j + 1) * 0.2)
+            seen = (j + 1) * 0.2
         else:
             assert doc.choices["p3b.bracket"] == f"p3b.bracket.{event[0]}"
             assert f"t = {num(event[1], 6)}" in sentence
             seen = event[1]
-        # t_max: a multiple of h = 0.2 with the event in view and a quarter of it to spare.
+        # t_max from (8) alone: the least multiple of h = 0.2 at or beyond 2 T^; the text
+        # says whether the event is in view on [0, t_max].
         t_max = float(doc.values["p3b.tmax"])
-        assert t_max >= 1.25 * seen - 1e-9 and t_max - 0.2 < 1.25 * seen
+        assert t_max >= 2 * t_hat - 1e-9 and t_max - 0.2 < 2 * t_hat
         assert doc.values["p3b.tmax"] in doc.entry("p3b.tmax")
+        view = "in" if seen <= t_max + 1e-9 else "out"
+        assert doc.choices["p3b.view"] == f"p3b.view.{event[0]}_{view}"
+        assert doc.entry("p3b.view") in doc.entry("p3b.tmax")
         ref = plain.estimate(length, 1e-3)
         assert f"j = {ref['j']}" in doc.entry("p3d")
         resolved = abs(ref["error_estimate"]) > ref["rounding_level"]
@@ -503,6 +507,9 @@ def _forced_docs(tmp_path, lang):
         "inside": _forced(tmp_path, EXAMPLE, ["problem 3"], [(p["agm.py"], "t_hat", _with_t_hat(5.13))], lang),
         "above": _forced(tmp_path, EXAMPLE, ["problem 3"], [(p["agm.py"], "t_hat", _with_t_hat(5.47))], lang),
         "not negligible": _forced(tmp_path, EXAMPLE, ["problem 3"], [(p["problem3.py"], "NEGLIGIBLE", 1e-20)], lang),
+        # t_max of half a period: the event comes after it.
+        "late return": _forced(tmp_path, EXAMPLE, ["problem 3"], [(p["problem3.py"], "PLOT", 0.5)], lang),
+        "late leave": _forced(tmp_path, SHORT, ["problem 3"], [(p["problem3.py"], "PLOT", 0.5)], lang),
         "within tolerance": _forced(tmp_path, EXAMPLE, ["problem 4"], [(p["problem4.py"], "TOL", 10.0)], lang),
         "not converged": _forced(tmp_path, EXAMPLE, ["problem 5"], [(problems, "ROUNDING_FLOOR", -1.0)], lang),
         "real": _forced(tmp_path, EXAMPLE, None, [], lang),
@@ -523,6 +530,9 @@ def test_every_catalogue_branch_is_taken_and_true(group_docs, tmp_path, lang):
         doc = forced[name]
         assert doc.choices["p3b.bracket"] == f"p3b.bracket.{side}" and doc.values["p3b.dist"] == dist
         assert "$t_25 = 5$" in doc.entry("p3b.bracket") and dist in doc.entry("p3b.bracket")
+    for name, view in (("late return", "returns_out"), ("late leave", "leaves_out")):
+        doc = forced[name]
+        assert doc.choices["p3b.view"] == f"p3b.view.{view}" and float(doc.values["p3b.tmax"]) < 3
     doc = forced["not negligible"]
     assert doc.choices["p3d.verdict"] == "p3d.verdict.not_negligible" and "10#super[−20]" in doc.entry("p3d.verdict")
     doc = forced["within tolerance"]
@@ -541,7 +551,7 @@ def test_every_catalogue_branch_is_taken_and_true(group_docs, tmp_path, lang):
     taken = {c for docs in (forced.values(), [d for _, lg, d in group_docs]) for d in docs for c in d.choices.values()}
     parents = _choice_parents()
     assert parents >= {"p3b.len", "p3b.tmax", "p3b.bracket", "p3d.verdict", "p2.start", "p4d.ii", "p4.alt", "p5.sub"}
-    assert _alternatives(parents) <= taken
+    assert _alternatives(parents | {"p3b.view"}) <= taken
     # And every entry of this language fills (no placeholder left without a value).
     real.text()
 

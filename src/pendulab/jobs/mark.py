@@ -397,7 +397,7 @@ def _group_questions(students: tuple[int, ...]) -> tuple[Question, ...]:
     event = t[j + 1] if j is not None else t[over] if over is not None else search
     out.append(Question("3b_t_max", "3(b)", "group", "at_least", round(t_max, 9),  # as the program prints it
                         (Alternative("event_seen", "", event), Alternative("search_limit", "", search)),
-                        "t_max_shows", low=event, high=search, min_digits=1))
+                        "t_max_shows", low=min(event, t_max), high=search, min_digits=1))
     if j is not None:
         for col, v in (("3b_bracket_lo", t[j]), ("3b_bracket_hi", t[j + 1])):
             out.append(_choice(col, "3(b)", "group", v, [Alternative("program", "", v)], "grid_times",

@@ -35,6 +35,8 @@ NEGLIGIBLE_RATIO = 1e-3
 #: 3(b): how far (in periods T^) the h = 0.2 simulation is searched for its first
 #: return to P or its passage over the top.
 PLOT_SEARCH_PERIODS = 4.0
+#: 3(b): ``t_max`` spans this many periods ``T^`` of (8), the coursework's hint.
+PLOT_PERIODS = 2.0
 
 #: 3(b): what the h = 0.2 simulation does first (``Problem3.plot_outcome``): it returns to
 #: P, it leaves the oscillation, or neither within the search (not ``Status.NO_RETURN``,
@@ -111,15 +113,13 @@ class Problem3(Result):
         return abs(self.cubic.cubic - self.t_hat)
 
 
-def plot_t_max(event: float, step: float) -> float:
-    """``t_max`` for 3(b): the first multiple of ``h`` at or beyond ``1.25`` times ``event``.
-
-    ``event`` is the later of ``T^`` (8) and the end of the simulation's own bracket when
-    it returns to ``P``, or the time it goes over the top: the event is in view, with a
-    quarter of it to spare. (The quotient is rounded to 9 decimals first, so that a
-    product like ``1.25 * 5.2`` that lands a rounding error above ``6.5`` gives 6.5.)
+def plot_t_max(t_hat: float, step: float) -> float:
+    """``t_max`` for 3(b) from (8) alone, as the coursework suggests: the first multiple of
+    ``h`` at or beyond ``PLOT_PERIODS`` periods ``T^``. (The quotient is rounded to 9
+    decimals first, so that a product that lands a rounding error above an integer, such
+    as ``24 * 0.2 / 0.2``, gives that integer.)
     """
-    return step * math.ceil(round(1.25 * event / step, 9))
+    return step * math.ceil(round(PLOT_PERIODS * t_hat / step, 9))
 
 
 def plot_outcome(length: float, amplitude: float, step: float, t_hat: float):
@@ -134,12 +134,12 @@ def plot_outcome(length: float, amplitude: float, step: float, t_hat: float):
     found = search_period(length, amplitude, step, search)
     if found.status == Status.LEFT_OSCILLATION:  # the search carries the time it went over the top
         assert found.t_left is not None
-        return LEAVES, found.t_left, None, plot_t_max(found.t_left, step)
+        return LEAVES, found.t_left, None, plot_t_max(t_hat, step)
     if found.estimate is None:
         if found.status != Status.NO_RETURN:
             raise search_error(found)
-        return NEITHER, None, None, plot_t_max(search / 1.25, step)
-    return RETURNS, None, found.estimate, plot_t_max(max(t_hat, found.estimate.bracket[1]), step)
+        return NEITHER, None, None, plot_t_max(t_hat, step)
+    return RETURNS, None, found.estimate, plot_t_max(t_hat, step)
 
 
 def problem3(

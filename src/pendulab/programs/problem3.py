@@ -17,6 +17,7 @@ from taylor import taylor
 ALPHA = 4 * math.pi / 5
 STEPS = [1e-2, 1e-3, 1e-4]  # 3(c): h = 10^-j, j = 2, 3, 4; 3(d) uses h = 1e-3
 SEARCH = 4  # 3(b): the h = 0.2 simulation is searched over 4 T^
+PLOT = 2  # 3(b): t_max spans 2 T^ of (8), as the coursework suggests
 NEGLIGIBLE = 1e-3  # 3(d): an error below 1/1000 of the Taylor method's is negligible
 
 def sign_change(z1, z2):
@@ -84,16 +85,12 @@ def rounding_errors(l_text, r, dps=30):
     return e
 
 def plot_t_max(l, reference, h=0.2):
-    """3(b): 1.25 times the first event of the h = 0.2 simulation over 4 T^: its
-    return to P (T^ if later), or the time it goes over the top; a multiple of h."""
+    """3(b): t_max from (8) alone, the first multiple of h at or beyond 2 T^; and the
+    h = 0.2 simulation over 4 T^: its return to P or the time it goes over the top."""
     t, z1, z2 = taylor(l, ALPHA, h, SEARCH * reference)
     j, over = sign_change(z1, z2)
-    if j is not None:
-        event = max(reference, t[j + 1])
-    else:  # over the top at t[over], or neither within 4 T^
-        event = t[over] if over is not None else SEARCH * reference / 1.25
-    # rounded to 9 decimals first: t_24 = 24 * 0.2 gives 1.25 t / h = 30.000000000000004
-    return h * math.ceil(round(1.25 * event / h, 9)), j, over, t
+    # rounded to 9 decimals first: a quotient such as 24.000000000000004 gives 24
+    return h * math.ceil(round(PLOT * reference / h, 9)), j, over, t
 
 def order(e0, e1, h0, h1):
     return math.log(e0 / e1) / math.log(h0 / h1)  # e ~ C h^p between two rows

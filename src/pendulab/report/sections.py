@@ -181,6 +181,10 @@ def problem3(doc: Doc, students: Sequence[int]) -> None:
         doc.choose("p3b.bracket", outcome)
     if outcome == "leaves":
         doc.set(**{"p3b.left": num(ts[over], 6), "p3b.ratio": num(ts[over] / t_hat, 3)})
+    if outcome != "none":  # whether the figures, on [0, t_max], show the event
+        event = ts[j + 1] if outcome == "returns" else ts[over]
+        doc.choose("p3b.view", f"{outcome}_{'in' if event <= t_max + 1e-9 else 'out'}")
+        doc.set(**{"p3b.view": doc.entry("p3b.view")})
     # Figures R1 and R2, drawn by plots.py from the run on [0, t_max].
     t, z1, z2 = taylor.taylor(length, p3.ALPHA, h, t_max)
     w = words(doc.catalogue)
