@@ -79,10 +79,21 @@ def test_group_answers_match_plain_python(key, i):
     ip = g["interpolation"]
     ref = plain.estimate(length, 1e-3)
     assert [row["node"] for row in ip["table"]] == [ref["j"] - 1 + k for k in range(4)]
-    assert [row["t"] for row in ip["table"]] == [float(Decimal(ref["j"] - 1 + k) / 1000) for k in range(4)]
+    assert [row["t"] for row in ip["table"]] == list(ref["times"])  # the nodes (3)'s program used, bit for bit
     assert [row["z2"] for row in ip["table"]] == pytest.approx(ref["nodes"], rel=KEY_AGREEMENT["3(d) nodes x_k = z_(2,j-1+k)"])
     assert [row["coefficient"] for row in ip["table"]] == pytest.approx(ref["coefficients"],
                                                                         rel=KEY_AGREEMENT["3(d) Newton coefficients"])
+
+
+def test_the_interpolation_table_lists_the_nodes_used():
+    """Issue 32: at l of the group 11112, t_3558 = fl(3558 x 0.001) = 3.5580000000000003, one ulp
+    above 3.558: the key's 3(d) table holds the node the interpolation and the program used."""
+    from pendulab.jobs.key import group_answers
+
+    table = group_answers((11112,))["interpolation"]["table"]
+    ref = plain.estimate(float(plain.length_text((11112,))), 1e-3)
+    assert [row["t"] for row in table] == list(ref["times"]) == [(ref["j"] - 1 + k) * 1e-3 for k in range(4)]
+    assert any(row["t"] != float(Decimal(row["node"]) / 1000) for row in table)  # the check can fail
 
 
 def test_short_pendulums_leave_the_oscillation(key):

@@ -354,7 +354,8 @@ def group_answers(students: Sequence[int]) -> dict[str, Any]:
     c = r.cubic
     interpolation = {
         "step": c.step, "j": c.j,
-        "table": [{"node": c.j - 1 + k, "z2": float(ip.z2[k]), "t": _time(c.j - 1 + k, c.step),
+        # the nodes' t_k as the interpolation used them, fl(k h) as (3)'s program has them (not j h as written)
+        "table": [{"node": c.j - 1 + k, "z2": float(ip.z2[k]), "t": float(ip.t[k]),
                    "coefficient": float(ip.coefficients[k])} for k in range(4)],
         "value": ip.value, "error_estimate": ip.error_estimate, "rounding_level": ip.rounding_level,
         "taylor_error": r.taylor_error, "ratio": _f(r.interpolation_ratio),
