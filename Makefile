@@ -56,11 +56,14 @@ docs: $(VENV)/.installed-docs
 	$(BIN)/sphinx-build -W --keep-going -q -b html docs docs/_build/html
 
 # The browser test drives a Chromium; on a machine without one, install Debian's
-# (a test tool's own browser download fails here). Other systems: see the README.
+# (a test tool's own browser download fails here). The PDF tests read text boxes with
+# poppler's pdftotext. Other systems: see the README.
 browser:
 	@command -v chromium >/dev/null 2>&1 || command -v chromium-browser >/dev/null 2>&1 || \
 		command -v google-chrome >/dev/null 2>&1 || { apt-get update -qq && \
 		DEBIAN_FRONTEND=noninteractive apt-get install -y -qq chromium >/dev/null; }
+	@command -v pdftotext >/dev/null 2>&1 || { apt-get update -qq && \
+		DEBIAN_FRONTEND=noninteractive apt-get install -y -qq poppler-utils >/dev/null; }
 
 report: $(VENV)/.installed-report
 	@echo "pendulab: writing report.pdf for the example group 262, 407, 634"

@@ -111,7 +111,7 @@ def test_exposure_notice_for_every_bind_others_reach(capsys, monkeypatch, host, 
     from pendulab.cli import serve as serve_cmd
 
     ran = {}
-    monkeypatch.setattr(server, "run", lambda app, h, p: ran.update(host=h))
+    monkeypatch.setattr(server, "run", lambda app, h, p, **kw: ran.update(host=h))
     monkeypatch.setattr(serve_cmd, "lan_addresses", lambda: ["192.168.1.20"])
     assert main(["serve", "--host", host, "--port", str(free_port())]) == 0
     err = capsys.readouterr().err
