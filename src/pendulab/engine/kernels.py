@@ -79,6 +79,19 @@ def taylor_sums(x, p, h):
     return z1_next, z2_next
 
 
+@njit(cache=True, nogil=True, inline="always")
+def sin_cos_coefficient(x, S, C, k):
+    """``S_k, C_k`` (:func:`taylor_step`'s recurrence) into ``S[k], C[k]``, from ``x_1 .. x_k``
+    and ``S, C`` below ``k``: the Taylor coefficients of ``sin(theta)`` and ``cos(theta)``."""
+    sk = 0.0
+    ck = 0.0
+    for j in range(1, k + 1):
+        sk += j * x[j] * C[k - j]
+        ck -= j * x[j] * S[k - j]
+    S[k] = sk / k
+    C[k] = ck / k
+
+
 @njit(cache=True, nogil=True)  # not inlined: its scratch arrays stay out of the other methods' loops
 def taylor_step(p, z1, z2, h, c):
     """One step of the Taylor method of order ``p``: the generalisation of (3).
@@ -102,13 +115,7 @@ def taylor_step(p, z1, z2, h, c):
     C[0] = cos(z1)
     x[2] = c * S[0] / 2
     for k in range(1, p):
-        sk = 0.0
-        ck = 0.0
-        for j in range(1, k + 1):
-            sk += j * x[j] * C[k - j]
-            ck -= j * x[j] * S[k - j]
-        S[k] = sk / k
-        C[k] = ck / k
+        sin_cos_coefficient(x, S, C, k)
         x[k + 2] = c * S[k] / ((k + 1) * (k + 2))
     return taylor_sums(x, p, h)
 
@@ -204,13 +211,7 @@ def taylor_damped_step(p, z1, z2, h, c, gamma, beta):
     sign = 1.0 if z2 > 0.0 else -1.0 if z2 < 0.0 else (1.0 if c * S[0] > 0.0 else -1.0)
     for k in range(0, p):
         if k > 0:
-            sk = 0.0
-            ck = 0.0
-            for j in range(1, k + 1):
-                sk += j * x[j] * C[k - j]
-                ck -= j * x[j] * S[k - j]
-            S[k] = sk / k
-            C[k] = ck / k
+            sin_cos_coefficient(x, S, C, k)
         q = 0.0
         for j in range(0, k + 1):
             q += (j + 1) * x[j + 1] * (k - j + 1) * x[k - j + 1]
