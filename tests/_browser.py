@@ -6,8 +6,11 @@ installs Debian's ``chromium`` with apt when none is on ``PATH``.
 """
 from __future__ import annotations
 
+import contextlib
 import os
 import shutil
+from collections.abc import Iterator
+from typing import Any
 
 NAMES = ("chromium", "chromium-browser", "google-chrome", "google-chrome-stable")
 
@@ -41,3 +44,31 @@ def find_chromium(playwright=None) -> str:
         if own and os.path.isfile(own):
             return own
     raise LookupError(HOW_TO_GET_ONE)
+
+
+#: Chromium's switches for the tests: headless, and no network of its own (QUIC, updates, sync).
+ARGS = [
+    "--headless", "--no-sandbox", "--disable-gpu", "--disable-quic", "--no-first-run",
+    "--disable-background-networking", "--disable-component-update", "--disable-sync",
+]
+
+
+@contextlib.contextmanager
+def launched() -> Iterator[Any]:
+    """A started Chromium (:func:`find_chromium`'s, driven by Playwright), closed on leaving."""
+    from playwright.sync_api import sync_playwright
+
+    with sync_playwright() as p:
+        browser = p.chromium.launch(executable_path=find_chromium(p), args=ARGS)
+        try:
+            yield browser
+        finally:
+            browser.close()
+
+
+def record_errors(pg: Any) -> Any:
+    """``pg`` with ``pg.errors``: the page's uncaught exceptions and console errors, as they come."""
+    pg.errors = []
+    pg.on("pageerror", lambda e: pg.errors.append(str(e)))
+    pg.on("console", lambda m: pg.errors.append(m.text) if m.type == "error" else None)
+    return pg

@@ -19,19 +19,13 @@ import numpy as np
 import pytest
 from PIL import Image
 from playwright.sync_api import TimeoutError as PlaywrightTimeoutError
-from playwright.sync_api import sync_playwright
 
-from _browser import find_chromium
+from _browser import launched, record_errors
 from pendulab.core import methods
 from pendulab.core.inputs import parse_angle
 from pendulab.numerics import simulation
 from reference import EXAMPLE_LENGTH, EXAMPLE_LENGTH_TEXT, ellipk_period
 from served import serve_in_child
-
-CHROMIUM_ARGS = [
-    "--headless", "--no-sandbox", "--disable-gpu", "--disable-quic", "--no-first-run",
-    "--disable-background-networking", "--disable-component-update", "--disable-sync",
-]
 
 
 @pytest.fixture(scope="module")
@@ -43,10 +37,8 @@ def server():
 
 @pytest.fixture(scope="module")
 def browser():
-    with sync_playwright() as p:
-        b = p.chromium.launch(executable_path=find_chromium(p), args=CHROMIUM_ARGS)
+    with launched() as b:
         yield b
-        b.close()
 
 
 @pytest.fixture
@@ -59,8 +51,8 @@ def page(browser, server):
 
 def guarded_page(context, server):
     """A new page of ``context`` that records (and aborts) requests leaving the server, and console errors."""
-    pg = context.new_page()
-    pg.outside, pg.errors = [], []
+    pg = record_errors(context.new_page())
+    pg.outside = []
 
     def route(r):
         if r.request.url.startswith(server + "/"):
@@ -70,8 +62,6 @@ def guarded_page(context, server):
             r.abort()
 
     pg.route("**/*", route)
-    pg.on("pageerror", lambda e: pg.errors.append(str(e)))
-    pg.on("console", lambda m: pg.errors.append(m.text) if m.type == "error" else None)
     return pg
 
 

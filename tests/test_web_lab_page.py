@@ -13,15 +13,12 @@ from urllib.parse import parse_qs, urlparse
 import mpmath
 import numpy as np
 import pytest
-from playwright.sync_api import sync_playwright
 from scipy.integrate import solve_ivp
 
-from _browser import find_chromium
+from _browser import launched, record_errors
 from reference import G, ellipk_period
 from served import serve_in_child
 
-ARGS = ["--headless", "--no-sandbox", "--disable-gpu", "--no-first-run", "--disable-background-networking",
-        "--disable-component-update", "--disable-sync"]
 #: Two pendulums at 4x speed, each swinging its own amplitude.
 TWO = "/?length=1&amplitude=30&unit=deg&step=1e-3&t_max=60&speed=4&second=1&length2=1&amplitude2=80"
 
@@ -34,18 +31,13 @@ def server():
 
 @pytest.fixture(scope="module")
 def browser():
-    with sync_playwright() as p:
-        b = p.chromium.launch(executable_path=find_chromium(p), args=ARGS)
+    with launched() as b:
         yield b
-        b.close()
 
 
 def _open(browser, server, url, throttle=None):
     context = browser.new_context(viewport={"width": 1400, "height": 1000})
-    pg = context.new_page()
-    pg.errors = []
-    pg.on("pageerror", lambda e: pg.errors.append(str(e)))
-    pg.on("console", lambda m: pg.errors.append(m.text) if m.type == "error" else None)
+    pg = record_errors(context.new_page())
     if throttle:  # a slow machine: Chromium's CPU throttling (the devtools protocol)
         context.new_cdp_session(pg).send("Emulation.setCPUThrottlingRate", {"rate": throttle})
     pg.goto(server + url)
