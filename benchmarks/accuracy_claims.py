@@ -187,18 +187,16 @@ def claims(quick: bool = False) -> list[dict]:
     worst case its adversarial search found (``worst`` in the unit of ``bound``)."""
     b = BUDGETS["quick" if quick else "full"]
     rows = []
-    r = adversarial.motion_search(b["motion"])
-    rows.append({"claim": "`exact_motion`: theta, theta' (`exact_motion_error_bound`)",
-                 "bound_text": "`16 eps + 2^-100 omega0 abs(t)` rad (theta' times `omega0`)",
-                 "kind": "phase term derived; 16 measured", "bound": 1.0, "worst": r["worst"],
-                 "worst_text": f"{r['worst']:.2f} of the bound ({16 * r['worst']:.0f} eps)", "where": r["where"],
-                 "evaluations": r["evaluations"]})
-    r = adversarial.launched_search(b["launched"])
-    rows.append({"claim": "`launched_motion`: theta, theta' (`launched_motion_error_bound`)",
-                 "bound_text": "`16 eps max(1, abs(theta)) + 2^-100 max(1, k) w abs(t)` rad (theta' times `2 max(1, k) w`)",
-                 "kind": "phase term derived; 16 measured", "bound": 1.0, "worst": r["worst"],
-                 "worst_text": f"{r['worst']:.2f} of the bound ({16 * r['worst']:.0f} eps)", "where": r["where"],
-                 "evaluations": r["evaluations"]})
+    for search, budget, claim, text in (
+            (adversarial.motion_search, b["motion"], "`exact_motion`: theta, theta' (`exact_motion_error_bound`)",
+             "`16 eps + 2^-100 omega0 abs(t)` rad (theta' times `omega0`)"),
+            (adversarial.launched_search, b["launched"],
+             "`launched_motion`: theta, theta' (`launched_motion_error_bound`)",
+             "`16 eps max(1, abs(theta)) + 2^-100 max(1, k) w abs(t)` rad (theta' times `2 max(1, k) w`)")):
+        r = search(budget)
+        rows.append({"claim": claim, "bound_text": text, "kind": "phase term derived; 16 measured", "bound": 1.0,
+                     "worst": r["worst"], "worst_text": f"{r['worst']:.2f} of the bound ({16 * r['worst']:.0f} eps)",
+                     "where": r["where"], "evaluations": r["evaluations"]})
     r = adversarial.t_hat_search(b["t_hat"])
     rows.append({"claim": "`T^` (7 iterations) up to `fixed_iterations_limit()` (`FIXED_ITERATIONS_ULPS`)",
                  "bound_text": f"{FIXED_ITERATIONS_ULPS} ulp from the correctly rounded period", "kind": "derived",
