@@ -200,6 +200,7 @@ def _subnormal_walk():
     return [10.0**-e for e in (300, 306, 308, 310, 315, 318, 320, 321)] + [n * tiny for n in (200, 100, 52, 51, 50, 49, 20, 1)]
 
 
+@pytest.mark.slow  # plain (3) in Python over 16 amplitudes: 5 s
 def test_the_underflow_refusal_is_where_plain_3_never_returns():
     # Plain (3) in doubles returns with subnormal theta' steps (j = 2006 down to 1e-315, then
     # other j as the steps quantise); it never moves once h (g/l) alpha rounds to zero.
