@@ -73,5 +73,7 @@ if __name__ == "__main__":
     print(f"2(b) estimate |alpha - x_N| ~ {c * (xs[-1] - xs[-2]) ** 2 + delta:.1e}")
     q, rho, k_max = quotients(xs, delta)
     for k in range(len(q)):
-        print(f"2(c) q_{k} = {q[k]:.10f}, relative rounding error {rho[k]:.1e}")
+        # only the digits its rounding error leaves right
+        print(f"2(c) q_{k} = {right(q[k], rho[k] * q[k])},",
+              f"relative rounding error {rho[k]:.1e}")
     print(f"     k_max = {k_max}; C = |f''/(2 f')| = {c:.10f}")

@@ -98,14 +98,18 @@ def problem2(doc: Doc, students: Sequence[int]) -> None:
     last = abs(xs[-1] - xs[-2])
     # Each iterate to the rounding level delta (degrees: plus the conversion's), as problem2.py prints.
     deg = math.degrees(delta) + 2 * p2.U * math.degrees(xs[0])
+    # f(x_k) carries the rounding of its terms, S = 1.25 (2 pi/p) + 1.5 of them (at most
+    # 1.3 u S against mpmath near z: 2 u S); a step x_(k+1) - x_k two iterates' delta.
+    f_error = 2 * p2.U * (1.25 * p2.T0 + p2.TARGET)
     rows = []
     for k, x in enumerate(xs):
-        step = sci(xs[k + 1] - x, 3) if k + 1 < len(xs) else "—"
-        rows.append([integer(k), err(x, delta), err(math.degrees(x), deg), sci(p2.f(x), 3), step])
+        step = err(xs[k + 1] - x, 2 * delta, 3) if k + 1 < len(xs) else "—"
+        rows.append([integer(k), err(x, delta), err(math.degrees(x), deg), err(p2.f(x), f_error, 3), step])
     doc.tables["p2a"] = rows
-    # Every quotient with its relative rounding error: the reader sees q_k approach the
-    # constant while that error is small, and where rounding takes over (2(c)).
-    doc.tables["p2c"] = [[integer(k), num(qk, 10), sci(r, 1)] for k, (qk, r) in enumerate(zip(q, rho))]
+    # Every quotient with its relative rounding error, and the digits that error allows: the
+    # reader sees q_k approach the constant while that error is small, and where rounding
+    # takes over (2(c)).
+    doc.tables["p2c"] = [[integer(k), err(qk, r * qk), sci(r, 1)] for k, (qk, r) in enumerate(zip(q, rho))]
     closed = 2 * math.asin(2 * math.sqrt(p2.TARGET / p2.T0 - 1))  # (9) solved by hand, a check
     doc.set(**{
         "p2.l": num(p2.L, 4), "p2.target": num(p2.TARGET, 4),
@@ -117,12 +121,12 @@ def problem2(doc: Doc, students: Sequence[int]) -> None:
         "p2.stepa": num(steps[0], 6), "p2.stepb": num(steps[1], 6), "p2.width": num(b - a, 6),
         "p2.x0": err(x0, delta), "p2.x0deg": err(math.degrees(x0), deg),
         "p2.alpha": err(xs[-1], delta), "p2.deg": err(math.degrees(xs[-1]), deg),
-        "p2.dfz": num(p2.df(xs[-1]), 6), "p2.last": sci(last, 3),
+        "p2.dfz": num(p2.df(xs[-1]), 6), "p2.last": err(last, 2 * delta, 3),
         "p2.errest": sci(const * last**2 + delta, 2), "p2.delta": sci(delta, 2),
         "p2.closed": sci_up(abs(closed - xs[-1]), 2) if closed != xs[-1] else "0",
         "p2.qtol": f"{p2.Q_TOL:.0%}",
         "p2.kmax": integer(k_max),
-        "p2.C": num(const, 10), "p2.qkmax": num(q[k_max], 10),
+        "p2.C": num(const, 10), "p2.qkmax": err(q[k_max], rho[k_max] * q[k_max]),
         "p2.qrel": sci(abs(q[k_max] - const) / const, 2),
         "p2.qlast": integer(len(q) - 1),
     })
@@ -242,7 +246,7 @@ def problem3(doc: Doc, students: Sequence[int]) -> None:
         "p3d.movedp": sci_up(e["p0"], 1),
         "p3d.t_hat": shown("t_hat", t_hat),
         "p3d.taylor": sci(taylor_error, 3),
-        "p3d.ratio": sci_beside(ratio, p3.NEGLIGIBLE, 1),
+        "p3d.ratio": _ratio(ratio, e["e0"] / taylor_error if taylor_error > 0 else math.inf, p3.NEGLIGIBLE),
         "p3d.c0": coef[0],
         "p3d.c1": err(c["coef"][1], e["coef"][1]),
         "p3d.c2": err(c["coef"][2], e["coef"][2]),
@@ -257,6 +261,17 @@ def problem3(doc: Doc, students: Sequence[int]) -> None:
     doc.choose("p3d.est", "resolved" if abs(c["e0"]) > c["rounding"] else "rounding")
     doc.choose("p3d.verdict", "negligible" if ratio < p3.NEGLIGIBLE else "not_negligible")
     doc.set(**{"p3d.answer": doc.word("answers.yes" if ratio < p3.NEGLIGIBLE else "answers.no")})
+
+
+def _ratio(ratio: float, error: float, limit: float) -> str:
+    """3(d)'s ratio of the interpolation error to the Taylor method's: one digit, on the side
+    of ``limit`` it lies (:func:`sci_beside`), unless the rounding of e(0) (``error``, the ratio's
+    share of it) leaves less: then only the digits it allows (:func:`err`)."""
+    if not math.isfinite(ratio):
+        return "—"
+    if err(ratio, error, 1) == sci(ratio, 1):
+        return sci_beside(ratio, limit, 1)
+    return err(ratio, error, 1)
 
 
 # ----------------------------------------------------------------------------- problem 4
@@ -328,9 +343,16 @@ def problem5(doc: Doc, students: Sequence[int]) -> None:
     # Beyond the coursework, from the engine: the substituted integral.
     r = problems.problem5()
     sub = {row.n: row for row in r.rows}
+    floor = r.rounding_floor
+
+    def sub_error(e: float) -> str:
+        """An error at or below the rounding floor is rounding: its digits say nothing (against
+        T^, itself a double), so it prints as the floor it is under."""
+        return f"≤ {sci_up(floor, 1)}" if e <= floor else sci(e, 2)
+
     doc.tables["p5d"] = [[
         integer(n), err(period, p5.rounding_error(n)), sci(error, 3), fixed(rate, 4),
-        num(sub[n].substitution_estimate, 15), sci(sub[n].substitution_error, 2),
+        num(sub[n].substitution_estimate, 15), sub_error(sub[n].substitution_error),
     ] for n, period, error, rate in table[1:]]
     w = words(doc.catalogue)  # figure R5, drawn by plots.py from the program's table
     doc.figure("p5d_conv", lambda ax: plots.figure5(ax, [row[0] for row in table[1:]], [row[2] for row in table[1:]], w),
@@ -344,9 +366,8 @@ def problem5(doc: Doc, students: Sequence[int]) -> None:
         "p5.rate": fixed(last[3], 4),
         "p5.elast": sci(last[2], 3), "p5.nlast": integer(last[0]),
         "p5.floor": sci(r.rounding_floor, 1),
-        "p5.subbest": "—" if conv is None else sci(sub[conv].substitution_error, 1),
         "p5.subn": "—" if conv is None else integer(conv),
-        "p5.sub10": sci(sub[10].substitution_error, 2),
+        "p5.sub10": sub_error(sub[10].substitution_error),
         "p5.offset": num(plots.GUIDE, 2),
     })
     doc.choose("p5.sub", "converged" if conv is not None else "not_converged")
