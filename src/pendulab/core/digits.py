@@ -56,10 +56,11 @@ POLICY: dict[str, Form] = {
     "p1.error_bound": Form("bound", 4),
     # problem 2: Newton's iterates (their digits from the rounding level delta), steps, quotients
     "p2.iterate": Form("error", 16),
-    "p2.residual": Form("scientific", 3),
-    "p2.step": Form("scientific", 3),
+    "p2.residual": Form("error", 3),
+    "p2.step": Form("error", 3),
     "p2.error_estimate": Form("scientific", 2),
-    "p2.quotient": Form("significant", 10),
+    "p2.quotient": Form("error", 17),
+    "p2.constant": Form("significant", 10),
     "p2.relative_rounding": Form("bound", 1),
     # problem 3: the simulation's values (digits from their rounding), periods and errors
     "p3.state": Form("error", 12),

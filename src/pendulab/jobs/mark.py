@@ -116,7 +116,7 @@ def _choice(column: str, part: str, scope: Literal["class", "group"], key: Any, 
 #: The report's digit policy (:data:`pendulab.core.digits.POLICY`) for each question's key:
 #: its printed digits, the same in the key, the marked sheet and the report.
 PRINTED = (("1b_g", "p1.g"), ("2_alpha_deg", "p2.iterate"), ("2_x0_deg", "p2.iterate"), ("2_q", "p2.quotient"),
-           ("2_constant", "p2.quotient"), ("2_error_estimate", "p2.error_estimate"), ("3a_", "p3.state"),
+           ("2_constant", "p2.constant"), ("2_error_estimate", "p2.error_estimate"), ("3a_", "p3.state"),
            ("3b_t_hat", "t_hat"), ("3c_T", "estimate"), ("3c_error", "error"), ("3d_p0", "estimate"),
            ("3d_divided", "p3.error_estimate"), ("3d_c", "p3.coefficient"), ("3d_z2", "p3.state"),
            ("3d_error_estimate", "p3.error_estimate"), ("4a_z1", "p3.state"),
