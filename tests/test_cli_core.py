@@ -307,3 +307,26 @@ def test_period_takes_the_amplitude_exactly_near_pi(cli):
             assert data["period"] == agm_period(1.0, data["amplitude"])
 
     check()
+
+
+@pytest.mark.parametrize("length, amplitude, steps", [
+    (EXAMPLE_LENGTH_TEXT, "4pi/5", "1e-2,1e-3,1e-4"), ("1", "pi/4", "1e-2,1e-3"), ("3.5", "2", "2e-3,5e-4")])
+def test_estimate_prints_only_the_digits_its_error_against_t_allows(cli, length, amplitude, steps):
+    """Each estimate of T in the table (linear, cubic, dense) within one unit of its last printed
+    digit of the true period (mpmath's K, the amplitude's double): no digit beyond its error."""
+    from decimal import Decimal
+
+    res = cli("estimate", "-l", length, "-a", amplitude, "--step", steps, "--dense")
+    assert res.code == 0, res.err
+    alpha = cli("period", "-l", length, "-a", amplitude, "--json").json["amplitude"]
+    true = reference_period(length, alpha, dps=50)
+    rows = [line.split() for line in res.out.splitlines()[3:] if line.split()[0][0].isdigit()]
+    assert len(rows) == len(steps.split(","))
+    for row in rows:
+        for text in (row[3], row[4].rstrip("!"), row[-2]):  # linear, cubic, dense
+            d = Decimal(text)
+            with mpmath.workdps(50):
+                assert abs(mpmath.mpf(text) - true) <= mpmath.mpf(10) ** d.as_tuple().exponent, (text, true)
+    # the full doubles stay in --json
+    data = cli("estimate", "-l", length, "-a", amplitude, "--step", steps, "--json").json
+    assert any(len(repr(r["cubic"])) > len(row[4]) for r, row in zip(data["rows"], rows))

@@ -1,6 +1,7 @@
 """Commands of the foundation: ``period``, ``simulate``, ``estimate``, ``length``."""
 from __future__ import annotations
 
+import math
 import os
 
 import click
@@ -184,6 +185,7 @@ def _plots():
 @json_option
 def estimate(length, amplitude, steps, t_max, method, dense, g, as_json):
     """The period from simulations (problem 3(c)-(d)): bracket, linear and cubic estimates."""
+    from ..core.digits import with_error
     from ..numerics.crossing import estimate_periods
     from ..numerics.group import group_length
 
@@ -194,12 +196,20 @@ def estimate(length, amplitude, steps, t_max, method, dense, g, as_json):
         return
     rows, period = r.rows, r.period
     click.echo(f"l = {length!r} m, alpha = {float(amplitude)!r} rad, method {method}")
-    click.echo(f"period (AGM, (7)-(8))  T = {period!r} s")
+    click.echo(f"period (AGM, (7)-(8))  T = {period!r} s; each estimate with the digits its error against T "
+               "leaves right (--json: every digit)")
     head = f"{'h':>8} {'bracket [t_j, t_j+1]':>25} {'linear':>18} {'cubic p(0)':>18} {'interp. err. est.':>17} {'|linear - T|':>12} {'|cubic - T|':>12} {'order':>6}"
     if dense:
         head += f" {'dense output':>18} {'|dense - T|':>12}"
     click.echo(head)
     below = outside = False
+    # An estimate of T carries the digits its error against T allows (that error, measured,
+    # plus T's own half ulp): a 15-digit p(0) at h = 1e-2 would claim 10 digits it has not.
+    half = math.ulp(period) / 2
+
+    def right(x: float, error: float) -> str:
+        return with_error(x, error + half)
+
     for e, co in zip(rows, r.cubic_orders):
         br = f"[{e.bracket[0]:.10g}, {e.bracket[1]:.10g}]"
         order = f"{co:6.2f}" if co is not None else f"{'':>6}"
@@ -207,13 +217,13 @@ def estimate(length, amplitude, steps, t_max, method, dense, g, as_json):
         est = f"{e.cubic_error_estimate:.3e}"
         if not e.interpolation.error_estimate_resolved:
             est, below = f"<{e.interpolation.rounding_level:.1e}*", True
-        cubic = f"{e.cubic:.15g}"
+        cubic = right(e.cubic, e.cubic_error)
         if not e.cubic_in_bracket:  # no estimate of the period: flagged, not hidden
             cubic, outside = cubic + "!", True
-        line = (f"{e.step:>8g} {br:>25} {e.linear:>18.15g} {cubic:>18} {est:>17} "
+        line = (f"{e.step:>8g} {br:>25} {right(e.linear, e.linear_error):>18} {cubic:>18} {est:>17} "
                 f"{e.linear_error:>12.3e} {e.cubic_error:>12.3e} {order}")
         if dense:
-            line += f" {e.dense:>18.15g} {e.dense_error:>12.3e}"
+            line += f" {right(e.dense, e.dense_error):>18} {e.dense_error:>12.3e}"
         click.echo(line)
     if below:
         click.echo("* below the rounding level of t_k = k h: the estimate there is rounding, not interpolation error")
