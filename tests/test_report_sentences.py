@@ -348,3 +348,56 @@ def test_names_beyond_the_embedded_fonts_search_the_system_fonts():
 
     assert not needs_system_fonts(["Zoë Ñúñez-O'Brien", "Αλέξανδρος", "Дмитрий", "Łukasz Żółć"])
     assert all(needs_system_fonts([n]) for n in ("李明", "שרה כהן", "محمد", "अनिल"))
+
+
+@pytest.mark.parametrize("lang", ["en", "pt"])
+def test_an_untrusted_h02_return_is_said_untrusted(lang):
+    """A sum of 1115 gives l = 5^(1/4) = 1.4953487812: the h = 0.2 simulation returns at [5, 5.2],
+    but the engine's search finds it untrusted (its p(0) more than a quarter period off the
+    period); 3(b) says so after the bracket, with the search's numbers, in each language. The
+    example group's return is trusted: no such sentence. The key marks the same return."""
+    from pendulab.core.methods import Status
+    from pendulab.jobs.key import group_answers
+    from pendulab.numerics.crossing import search_period
+    from pendulab.numerics.period import agm_period
+
+    length, alpha = 1.4953487812, 4 * math.pi / 5
+    s = search_period(length, alpha, 0.2, 4 * agm_period(length, alpha, iterations=7))
+    assert s.status == Status.UNTRUSTED and s.max_energy_drift <= s.separatrix_distance
+    off = abs(s.estimate.cubic - s.period) / s.period
+    assert off > 0.25  # independent of the search's rule: mpmath's period, below
+    with mpmath.workdps(30):
+        true = 4 * mpmath.sqrt(mpmath.mpf("1.4953487812") / mpmath.mpf(G)) * mpmath.ellipk(mpmath.sin(mpmath.mpf(alpha) / 2) ** 2)
+    assert abs(s.estimate.cubic - float(true)) / float(true) > 0.25
+    doc = sections((1115,), ["problem 3"], lang)
+    assert doc.values["p3b.l"] == "1.4953487812" and doc.choices["p3b.tmax"] == "p3b.tmax.returns"
+    assert doc.choices["p3b.trust"] == "p3b.trust.off"
+    text = doc.entry("p3b.bracket")
+    assert text.endswith(doc.entry("p3b.trust")) and ("separatrix" if lang == "en" else "separatriz") in text
+    assert f"{off:.0%}" in text and value(doc.values["p3b.cubic"]) == pytest.approx(s.estimate.cubic, abs=1e-4)
+    example = sections(EXAMPLE, ["problem 3"], lang)
+    assert example.choices["p3b.trust"] == "p3b.trust.trusted" and example.values["p3b.trust"] == ""
+    assert group_answers((1115,))["plot"]["status"] == "untrusted" and group_answers(EXAMPLE)["plot"]["status"] == "found"
+
+
+def test_an_untrusted_return_by_its_energy_names_both_energies(monkeypatch):
+    """The other reason (no real group's h = 0.2 return has it): the energy error at the return
+    beyond the distance to the separatrix, forced on the 1115 group's search."""
+    import dataclasses
+
+    from pendulab.numerics import crossing
+
+    real = crossing.search_period
+
+    def forced(*args, **kwargs):
+        s = real(*args, **kwargs)
+        return dataclasses.replace(s, max_energy_drift=2 * s.separatrix_distance)
+
+    monkeypatch.setattr(crossing, "search_period", forced)
+    doc = sections((1115,), ["problem 3"])
+    assert doc.choices["p3b.trust"] == "p3b.trust.energy"
+    from pendulab.report.markup import sci
+
+    distance = G / 1.4953487812 * (1 + math.cos(4 * math.pi / 5))  # (g/l)(1 + cos alpha) = 1.2525 1/s^2
+    assert (doc.values["p3b.drift"], doc.values["p3b.sep"]) == (sci(2 * distance, 2), sci(distance, 2))
+    assert doc.values["p3b.drift"] in doc.entry("p3b.bracket") and doc.values["p3b.sep"] in doc.entry("p3b.bracket")

@@ -85,6 +85,8 @@ def _table(k) -> None:
         p = g["plot"]
         shown = (f"[{p['bracket'][0]:.4g}, {p['bracket'][1]:.4g}]" if p["outcome"] == "returns"
                  else f"leaves at {p['left_at']:.4g}" if p["outcome"] == "leaves" else "no return")
+        if p["status"] == "untrusted":  # near the separatrix: the return says nothing of the period
+            shown += " untrusted"
         click.echo(f"{' '.join(map(str, g['students'])):<28} {g['length_text']:>13} {g['t_hat']:>18.15g} "
                    f"{shown:>18} " + " ".join(f"{e['cubic']:>18.15g}" for e in g["estimates"]))
 

@@ -338,6 +338,7 @@ def group_answers(students: Sequence[int]) -> dict[str, Any]:
     plot = {
         "step": h,
         "outcome": r.plot_outcome,
+        "status": r.plot_status,
         "j": None if est is None else est.j,
         "bracket": bracket,
         "t_hat_inside": None if bracket is None else bracket[0] <= r.t_hat <= bracket[1],

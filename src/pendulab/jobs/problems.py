@@ -87,6 +87,10 @@ class Problem3(Result):
         3(d): ``interpolation_bound`` over the Taylor method's error in the period.
     interpolation_negligible : bool
         3(d)'s answer: ``interpolation_ratio < NEGLIGIBLE_RATIO``.
+    plot_status : str
+        The ``h = 0.2`` search's status (``PeriodSearch.status``, lower case): ``"untrusted"``
+        where it returns but near the separatrix cannot be trusted (a sum of 1115:
+        ``l = 1.4953487812``, the return 26 % of ``T`` off); ``"found"`` for a trusted return.
     """
 
     figure3: Trajectory
@@ -106,6 +110,7 @@ class Problem3(Result):
     interpolation_bound: float
     interpolation_ratio: float
     interpolation_negligible: bool
+    plot_status: str = "found"
 
     @property
     def taylor_error(self) -> float:
@@ -123,7 +128,8 @@ def plot_t_max(t_hat: float, step: float) -> float:
 
 
 def plot_outcome(length: float, amplitude: float, step: float, t_hat: float):
-    """3(b): ``(outcome, left_at, estimate, t_max)`` of the simulation with step ``step``.
+    """3(b): ``(outcome, left_at, estimate, t_max, status)`` of the simulation with step ``step``
+    (``status``: the search's, lower case; ``"untrusted"`` for a return near the separatrix).
 
     The simulation is searched over ``PLOT_SEARCH_PERIODS`` periods ``t_hat``: it returns to
     ``P`` (sign change of ``z2`` with ``z1 > 0``), or its discrete energy grows until it
@@ -134,12 +140,12 @@ def plot_outcome(length: float, amplitude: float, step: float, t_hat: float):
     found = search_period(length, amplitude, step, search)
     if found.status == Status.LEFT_OSCILLATION:  # the search carries the time it went over the top
         assert found.t_left is not None
-        return LEAVES, found.t_left, None, plot_t_max(t_hat, step)
+        return LEAVES, found.t_left, None, plot_t_max(t_hat, step), found.status.name.lower()
     if found.estimate is None:
         if found.status != Status.NO_RETURN:
             raise search_error(found)
-        return NEITHER, None, None, plot_t_max(t_hat, step)
-    return RETURNS, None, found.estimate, plot_t_max(t_hat, step)
+        return NEITHER, None, None, plot_t_max(t_hat, step), found.status.name.lower()
+    return RETURNS, None, found.estimate, plot_t_max(t_hat, step), found.status.name.lower()
 
 
 def problem3(
@@ -155,7 +161,7 @@ def problem3(
     alpha = float(cases.PROBLEM3_AMPLITUDE)
     t_hat = agm_period(length, alpha, iterations=7)
     h = cases.PROBLEM3_PLOT_STEP
-    outcome, left_at, plot_estimate, t_max = plot_outcome(length, alpha, h, t_hat)
+    outcome, left_at, plot_estimate, t_max, plot_status = plot_outcome(length, alpha, h, t_hat)
     plot = simulate(length, alpha, h, t_max)
     steps = list(steps)
     if cubic_step not in steps:
@@ -184,6 +190,7 @@ def problem3(
         interpolation_bound=bound,
         interpolation_ratio=ratio,
         interpolation_negligible=ratio < NEGLIGIBLE_RATIO,
+        plot_status=plot_status,
     )
 
 

@@ -283,6 +283,8 @@ def _pdf(key: AnswerKey) -> bytes:
         p = g["plot"]
         shown = (f"[{num(p['bracket'][0], 6)}, {num(p['bracket'][1], 6)}]" if p["outcome"] == "returns"
                  else f"leaves at $t = {num(p['left_at'], 6)}$" if p["outcome"] == "leaves" else "no return")
+        if p["status"] == "untrusted":  # near the separatrix (the report's 3(b) says why)
+            shown += " untrusted"
         inside = "—" if p["t_hat_inside"] is None else "yes" if p["t_hat_inside"] else "no"
         cells = [str(g["line"]), ", ".join(map(str, g["students"])), str(g["sum"]), g["length_text"],
                  num(g["t_hat"], 16), shown, inside]

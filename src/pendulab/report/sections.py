@@ -173,6 +173,7 @@ def problem3(doc: Doc, students: Sequence[int]) -> None:
     })
     doc.choose("p3b.len", "one" if len(digits) == 1 else "many")
     doc.choose("p3b.tmax", outcome)
+    _trust(doc, length, p3.ALPHA, h, p3.SEARCH * t_hat, outcome)
     if outcome == "returns":
         t_lo, t_hi = ts[j], ts[j + 1]
         # Where T^ lies: inside [t_j, t_(j+1)], before it or after it (the sentence follows).
@@ -272,6 +273,28 @@ def _ratio(ratio: float, error: float, limit: float) -> str:
     if err(ratio, error, 1) == sci(ratio, 1):
         return sci_beside(ratio, limit, 1)
     return err(ratio, error, 1)
+
+
+def _trust(doc: Doc, length: float, alpha: float, h: float, search: float, outcome: str) -> None:
+    """3(b), beyond the coursework: the engine's period search judges the h = 0.2 return. Near
+    the separatrix it can be untrusted (a sum of 1115 gives l = 1.4953487812: the return at
+    [5, 5.2] is 26 % of T off); the sentence after the bracket says so, with the search's numbers."""
+    from ..core.methods import Status
+    from ..numerics.crossing import search_period
+
+    s = search_period(length, alpha, h, search) if outcome == "returns" else None
+    if s is None or s.status != Status.UNTRUSTED:
+        doc.choose("p3b.trust", "trusted")
+    elif s.max_energy_drift is not None and s.separatrix_distance is not None \
+            and s.max_energy_drift > s.separatrix_distance:
+        doc.choose("p3b.trust", "energy")
+        doc.set(**{"p3b.drift": sci(s.max_energy_drift, 2), "p3b.sep": sci(s.separatrix_distance, 2)})
+    else:
+        assert s.estimate is not None
+        doc.choose("p3b.trust", "off")
+        doc.set(**{"p3b.cubic": num(s.estimate.cubic, 6),
+                   "p3b.off": f"{abs(s.estimate.cubic - s.period) / s.period:.0%}"})
+    doc.set(**{"p3b.trust": doc.entry("p3b.trust")})
 
 
 # ----------------------------------------------------------------------------- problem 4
