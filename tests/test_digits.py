@@ -106,6 +106,18 @@ def test_the_issues_numbers():
     assert digits.significant(0.88, 3) == "0.880" and digits.significant(11.2674, 6) == "11.2674"
 
 
+def test_scientific_forms_print_order_one_values_plain():
+    """|x| in [0.1, 1000) as a plain decimal with the same significant digits (issue 30:
+    not ``8.80 × 10^-1``); beyond, a power of ten; a carry decides on the rounded value."""
+    assert digits.scientific(0.8796, 3) == "0.880" and digits.scientific(11.26741, 6) == "11.2674"
+    assert digits.scientific(0.3, 1) == "0.3" and digits.scientific(-4.236, 2) == "-4.2"
+    assert digits.scientific(0.09996, 3) == "0.100" and digits.scientific(0.0996, 2) == "0.10"
+    assert digits.scientific(0.09, 2) == "9.0e-2" and digits.scientific(2.963e-5, 3) == "2.96e-5"
+    assert digits.scientific(999.96, 3) == "1.00e3" and digits.scientific(123.4, 2) == "1.2e2"
+    assert digits.bound(1.13e-6, 2, sci=True) == "1.2e-6" and digits.bound(0.27361, 2, sci=True) == "0.28"
+    assert digits.bound(0.0273622, 4) == "0.02737"  # the plain form keeps its range
+
+
 def test_shown_follows_the_policy():
     assert digits.shown("p4.normal", 401.0) == "401.000000"
     assert digits.shown("p1.error_bound", 0.0273622) == "0.02737"

@@ -18,7 +18,7 @@ import math
 from dataclasses import dataclass
 from decimal import ROUND_CEILING, ROUND_HALF_EVEN, Context, Decimal
 
-__all__ = ["FORMS", "POLICY", "Form", "bound", "fixed", "place", "rounding_noise", "scientific",
+__all__ = ["FORMS", "ORDER_ONE", "POLICY", "Form", "bound", "fixed", "place", "rounding_noise", "scientific",
            "shown", "significant", "split", "with_error"]
 
 #: The kinds of form: ``fixed`` (``digits`` decimals, the tables' columns), ``significant``
@@ -29,6 +29,10 @@ __all__ = ["FORMS", "POLICY", "Form", "bound", "fixed", "place", "rounding_noise
 FORMS = ("fixed", "significant", "scientific", "bound", "error", "integer")
 #: Plain decimals for magnitudes in [10^-3, 10^6); beyond, scientific notation.
 PLAIN = (Decimal("1e-3"), Decimal("1e6"))
+#: The scientific forms (``scientific``, a ``bound`` asked for as scientific) print an
+#: order-1 value, |x| in [0.1, 1000), as a plain decimal with the same significant digits
+#: (``0.880``, not ``8.80e-1``); beyond, a power of ten.
+ORDER_ONE = (Decimal("0.1"), Decimal("1e3"))
 #: Room for every digit of a double's exact decimal value (at most 767 significant digits).
 _EXACT = Context(prec=1100, Emin=-2000, Emax=2000)
 
@@ -109,6 +113,12 @@ def _text(d: Decimal, q: int, sci: bool | None = None) -> str:
     return f"{format(mant, 'f')}e{e}"
 
 
+def _order_one(r: Decimal, q: int) -> bool:
+    """True when ``r`` (a multiple of ``10^q``) prints plain in a scientific form: |r| in
+    :data:`ORDER_ONE` and no significant digit left of the units dropped (``q <= 0``)."""
+    return ORDER_ONE[0] <= abs(r) < ORDER_ONE[1] and q <= 0
+
+
 def _round(d: Decimal, q: int, rounding: str = ROUND_HALF_EVEN) -> Decimal:
     return d.quantize(Decimal(1).scaleb(q, _EXACT), rounding=rounding, context=_EXACT)
 
@@ -142,22 +152,25 @@ def significant(x: float, n: int) -> str:
 
 
 def scientific(x: float, n: int) -> str:
-    """``x`` to ``n`` significant digits times a power of ten (``-8.99e-15``); ``0`` for zero."""
+    """``x`` to ``n`` significant digits times a power of ten (``-8.99e-15``); an order-1
+    value (:data:`ORDER_ONE`) as a plain decimal with the same digits (``0.880``); ``0``
+    for zero."""
     d = _decimal(x)
     if d == 0:
         return "0"
     r, q = _significant_place(d, n)
-    return _text(r, q, sci=True)
+    return _text(r, q, sci=not _order_one(r, q))
 
 
 def bound(x: float, n: int, sci: bool | None = None) -> str:
     """``|x|`` rounded *up* to ``n`` significant digits (0.0273622 -> 0.02737): a bound stays a
-    bound. Plain or scientific as :func:`significant` (``sci`` forces one)."""
+    bound. Plain or scientific as :func:`significant`; ``sci=True`` as :func:`scientific`
+    (an order-1 bound plain), ``sci=False`` always plain."""
     d = abs(_decimal(x))
     if d == 0:
         return "0"
     r, q = _significant_place(d, n, ROUND_CEILING)
-    return _text(r, q, sci)
+    return _text(r, q, not _order_one(r, q) if sci else sci)
 
 
 def place(error: float) -> int:

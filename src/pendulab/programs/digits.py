@@ -1,21 +1,56 @@
 """Print only the digits that are right: with an error of at most e, keep the places
 down to the first 10^q with e <= 0.5 10^q (the number printed is then within one unit
 of its last digit of the true value); a bound is rounded up, so that it stays a bound.
+Errors and small numbers in scientific notation (2.96e-5), order-1 values plain (0.880).
 """
-from decimal import ROUND_CEILING, Decimal
+from decimal import ROUND_CEILING, Context, Decimal
+
+EXACT = Context(prec=800)  # every digit of a double's exact decimal value
 
 def right(x, error):
-    """x rounded to the place 10^q its error allows (scientific below 10^-3)."""
+    """x rounded to the place 10^q its error allows (half to even, on the exact value):
+    plain for |x| in [10^-3, 10^6) when q <= 0, else m.mme-k; 0 when |x| <= 0.5 10^q."""
     e = abs(Decimal(error))
     q = e.adjusted() + 2  # e < 10^(q-1), so e <= 0.5 10^q
     while Decimal(5).scaleb(q - 2) >= e:  # and one place further still holds
         q -= 1
-    if x == 0 or abs(x) >= 1e-3:
-        return f"{x:.{max(0, -q)}f}"
-    n = Decimal(x).adjusted() - q + 1  # the significant digits down to 10^q
-    return f"{x:.{n - 1}e}" if n >= 1 else "0"
+    d = Decimal(x).quantize(Decimal(1).scaleb(q), context=EXACT)
+    if d == 0:
+        return "0" if q >= 0 else "0." + "0" * -q
+    if Decimal("1e-3") <= abs(d) < Decimal("1e6") and q <= 0:
+        return f"{d:f}"
+    k = d.adjusted()
+    mant = d.scaleb(-k, EXACT).quantize(Decimal(1).scaleb(min(q - k, 0)), context=EXACT)
+    return f"{mant:f}e{k}"
 
-def up(x, n):
-    """|x| rounded up to n significant digits."""
-    d = abs(Decimal(x))
-    return f"{d.quantize(Decimal(1).scaleb(d.adjusted() - n + 1), ROUND_CEILING):f}"
+def sci(x, n, plain=(0.1, 1000)):
+    """x to n significant digits: plain for |x| in [0.1, 1000), else m.mme-k."""
+    if x == 0:
+        return "0"
+    mant, k = f"{x:.{n - 1}e}".split("e")
+    k = int(k)  # the power of ten of x rounded (9.996 -> 1.00e1)
+    if not plain[0] <= abs(float(f"{x:.{n - 1}e}")) < plain[1]:
+        return f"{mant}e{k}"
+    if n - 1 - k >= 0:
+        return f"{x:.{n - 1 - k}f}"
+    # tens and beyond with fewer digits: plain only in the wide range (120, not 1.2e2)
+    return f"{float(f'{x:.{n - 1}e}'):.0f}" if plain[1] > 1000 else f"{mant}e{k}"
+
+def up(x, n, plain=(1e-3, 1e6)):
+    """|x| rounded up to n significant digits (plain for |x| in [10^-3, 10^6))."""
+    a = abs(Decimal(x))
+    d = a.quantize(Decimal(1).scaleb(a.adjusted() - n + 1), ROUND_CEILING)
+    if d.adjusted() > a.adjusted():  # 9.991 -> 10.00: still n digits
+        d = a.quantize(Decimal(1).scaleb(d.adjusted() - n + 1), ROUND_CEILING)
+    return sci(float(d), n, plain)
+
+def sci_up(x, n):
+    """A bound in the form of sci: |x| rounded up to n significant digits."""
+    return up(x, n, (0.1, 1000))
+
+def beside(x, limit, n):
+    """sci(x, n), with more digits while it would read as limit or on its other side."""
+    while n < 17 and ((float(sci(x, n)) < limit) != (x < limit)
+                      or (float(sci(x, n)) == limit) != (x == limit)):
+        n += 1
+    return sci(x, n)
