@@ -113,6 +113,25 @@ def test_plain_outputs_against_the_spec(written):
 
 
 # ----------------------------------------------------------------------------- bit for bit
+finite = st.floats(allow_nan=False, allow_infinity=False, min_value=-1e300, max_value=1e300)
+
+
+@settings(max_examples=400, deadline=None)
+@given(finite, st.integers(1, 15), st.floats(-16, 1))
+def test_programs_print_the_digit_policys_forms(x, n, log_relative_error):
+    """digits.py, the programs' printing, writes each form as pendulab.core.digits does
+    (the report's): scientific with order-1 values plain, bounds rounded up, and only
+    the digits an error allows."""
+    from pendulab.core import digits
+
+    d = P["digits.py"]
+    assert d.sci(x, n) == digits.scientific(x, n)
+    assert d.up(x, n) == digits.bound(x, n) and d.sci_up(x, n) == digits.bound(x, n, sci=True)
+    error = max(abs(x), 1e-300) * 10.0**log_relative_error
+    assert d.right(x, error) == digits.with_error(x, error)
+    assert d.sci(0.8796, 3) == "0.880" and d.sci(11.26741, 6) == "11.2674" and d.sci(2.963e-5, 3) == "2.96e-5"
+
+
 @settings(max_examples=25, deadline=None)
 @given(groups)
 def test_length_rule_is_the_engines(students):

@@ -511,7 +511,7 @@ def _forced_docs(tmp_path, lang):
         "late return": _forced(tmp_path, EXAMPLE, ["problem 3"], [(p["problem3.py"], "PLOT", 0.5)], lang),
         "late leave": _forced(tmp_path, SHORT, ["problem 3"], [(p["problem3.py"], "PLOT", 0.5)], lang),
         "within tolerance": _forced(tmp_path, EXAMPLE, ["problem 4"], [(p["problem4.py"], "TOL", 10.0)], lang),
-        "not converged": _forced(tmp_path, EXAMPLE, ["problem 5"], [(problems, "ROUNDING_FLOOR", -1.0)], lang),
+        "not converged": _forced(tmp_path, EXAMPLE, ["problem 5"], [(p["problem5.py"], "FLOOR", -1.0)], lang),
         "real": _forced(tmp_path, EXAMPLE, None, [], lang),
     }
     return docs

@@ -7,13 +7,16 @@ from decimal import ROUND_CEILING, Context, Decimal
 
 EXACT = Context(prec=800)  # every digit of a double's exact decimal value
 
-def right(x, error):
-    """x rounded to the place 10^q its error allows (half to even, on the exact value):
-    plain for |x| in [10^-3, 10^6) when q <= 0, else m.mme-k; 0 when |x| <= 0.5 10^q."""
+def right(x, error, most=17):
+    """x rounded to the place 10^q its error allows, with at most `most` significant
+    digits (half to even, on the exact value): plain for |x| in [10^-3, 10^6) when
+    q <= 0, else m.mme-k; 0 when |x| <= 0.5 10^q."""
     e = abs(Decimal(error))
     q = e.adjusted() + 2  # e < 10^(q-1), so e <= 0.5 10^q
     while Decimal(5).scaleb(q - 2) >= e:  # and one place further still holds
         q -= 1
+    if x != 0:
+        q = max(q, Decimal(x).adjusted() - most + 1)
     d = Decimal(x).quantize(Decimal(1).scaleb(q), context=EXACT)
     if d == 0:
         return "0" if q >= 0 else "0." + "0" * -q

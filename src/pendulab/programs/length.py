@@ -23,4 +23,5 @@ def group_length(students):
 if __name__ == "__main__":
     students = [int(s) for s in sys.argv[1:]] or [262, 407, 634]
     total, digits, l_text = group_length(students)
-    print(f"sum = {total}, m = {''.join(map(str, digits))}, l = {l_text} m")
+    print(f"sum = {total}, m = {''.join(map(str, digits))}",
+          f"(digits {', '.join(map(str, digits))}: {len(digits)}), l = {l_text} m")

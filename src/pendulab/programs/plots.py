@@ -94,6 +94,7 @@ if __name__ == "__main__":
     matplotlib.use("Agg")
     from matplotlib.figure import Figure
     students = [int(s) for s in sys.argv[1:]] or [262, 407, 634]
+    print(f"R5: the guide n^(-1/2) is drawn {GUIDE:g} times above the first error")
     for name, (draw, data) in figures(students).items():
         fig = Figure(figsize=(4.5, 3), layout="constrained")
         draw(fig.add_subplot(), *data)

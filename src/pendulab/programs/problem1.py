@@ -5,7 +5,7 @@ l = 115.2 cm +- 0.3 cm, T = 2.1536 s +- 2e-4 s.
 import math
 from decimal import ROUND_HALF_UP, Decimal
 
-from digits import up
+from digits import sci, up
 
 L, DL = 1.152, 0.003  # m
 T, DT = 2.1536, 2e-4  # s
@@ -43,11 +43,17 @@ def solve():
 
 if __name__ == "__main__":
     r = solve()
+    print(f"l = {L:g} m +- {DL:g} m, T = {T:g} s +- {sci(DT, 1)} s")
     print(f"g = {r['g']:.10g} m/s^2,",
           f"dg/dl = {r['dg_dl']:.8g}, dg/dT = {r['dg_dt']:.8g}")
     # the bounds rounded up, so that they stay bounds
     print(f"1(a) |e_g| <= {up(r['abs_error'], 4)} m/s^2,",
           f"|e_g|/g <= {up(r['rel_error'], 4)}")
+    print(f"     dl/l = {sci(DL / L, 2)}, 2 dT/T = {sci(2 * DT / T, 2)},",
+          f"ratio {DL / L / (2 * DT / T):.2g}")
+    k, n = Decimal(abs(r["g"])).adjusted(), r["digits"]
     print(f"1(b) g in [{r['g_min']:.8g}, {r['g_max']:.8g}],",
-          f"worst error {up(r['worst'], 4)}: {r['digits']} significant digits,",
-          f"g = {r['g_text']} m/s^2")
+          f"worst error {up(r['worst'], 4)}, bound {up(r['bound'], 4)}")
+    print(f"     k = {k}: {up(r['bound'], 4)} <= {0.5 * 10.0 ** (k - n + 1):.3g}",
+          f"but > {0.5 * 10.0 ** (k - n):.3g}:",
+          f"{n} significant digits, g = {r['g_text']} m/s^2")

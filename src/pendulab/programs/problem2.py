@@ -5,7 +5,7 @@ f'(alpha) = (2 pi/p) sin(alpha)/8 and f''(alpha) = (2 pi/p) cos(alpha)/8.
 """
 import math
 
-from digits import right
+from digits import right, sci, sci_up
 
 G, L, TARGET = 9.80665, 0.5, 1.5
 T0 = 2 * math.pi / math.sqrt(G / L)  # 2 pi/p, the small-angle period
@@ -56,24 +56,39 @@ def quotients(xs, delta):
 
 if __name__ == "__main__":
     a, b, steps, holds = interval()
+    print(f"l = {L:g} m, T~ = {TARGET:g} s; 2 pi/p = {T0:.10g} s,",
+          f"1.25 (2 pi/p) = {1.25 * T0:.10g} s")
     print(f"2(a) [{math.degrees(a):g}, {math.degrees(b):g}] degrees:",
-          f"f(a) = {f(a):.4e}, f(b) = {f(b):.4e},",
-          f"f' >= {df(a):.6g}, f'' >= {d2f(b):.6g},")
+          f"f(a) = {sci(f(a), 4)}, f(b) = {sci(f(b), 4)},",
+          f"f' >= {df(a):.6g}, {d2f(b):.6g} <= f'' <= {d2f(a):.6g},")
     print(f"     Newton steps from a, b: {steps[0]:.6g}, {steps[1]:.6g}",
           f"(b - a = {b - a:.6g}); all conditions hold: {holds}")
     x0 = a if f(a) * d2f(a) > 0 else b  # Fourier: start at the end where f f'' > 0
     xs, delta = newton(x0)
     # each iterate to the rounding level delta (in degrees, plus the conversion's)
     deg = math.degrees(delta) + 2 * U * math.degrees(xs[0])
+    # f(x_k) to the rounding of its terms, 2 u S (S = 1.25 (2 pi/p) + 1.5), and a step
+    # x_(k+1) - x_k to two iterates' delta, 3 digits at most
+    f_error = 2 * U * (1.25 * T0 + TARGET)
+    diffs = [right(x1 - x0, 2 * delta, 3) for x0, x1 in zip(xs, xs[1:])]
     for k, x in enumerate(xs):
-        print(f"     x_{k} = {right(x, delta)} rad",
-              f"= {right(math.degrees(x), deg)} degrees")
+        step = f", x_{k + 1} - x_{k} = {diffs[k]}" if k < len(diffs) else ""
+        print(f"     x_{k} = {right(x, delta)} rad = {right(math.degrees(x), deg)}",
+              f"degrees, f = {right(f(x), f_error, 3)}{step}")
     c = abs(d2f(xs[-1]) / (2 * df(xs[-1])))  # the limit of q_k, |f''(z) / (2 f'(z))|
+    last = abs(xs[-1] - xs[-2])
     # 2(b): quadratic, so |z - x_N| ~ C |x_N - x_(N-1)|^2, plus the rounding level
-    print(f"2(b) estimate |alpha - x_N| ~ {c * (xs[-1] - xs[-2]) ** 2 + delta:.1e}")
+    print(f"2(b) f'(x_N) = {df(xs[-1]):.6g},",
+          f"|x_N - x_(N-1)| = {right(last, 2 * delta, 3)};",
+          f"estimate |alpha - x_N| ~ {sci(c * last**2 + delta, 2)},",
+          f"delta = {sci(delta, 2)}")
+    closed = 2 * math.asin(2 * math.sqrt(TARGET / T0 - 1))  # (9) solved by hand
+    print(f"     closed form: |alpha - x_N| <= {sci_up(closed - xs[-1], 2)}")
     q, rho, k_max = quotients(xs, delta)
     for k in range(len(q)):
         # only the digits its rounding error leaves right
         print(f"2(c) q_{k} = {right(q[k], rho[k] * q[k])},",
-              f"relative rounding error {rho[k]:.1e}")
-    print(f"     k_max = {k_max}; C = |f''/(2 f')| = {c:.10f}")
+              f"relative rounding error {sci(rho[k], 1)}")
+    print(f"     k_max = {k_max} (rounding error at most {Q_TOL:.0%});",
+          f"C = |f''/(2 f')| = {c:.10g},",
+          f"|q_k_max - C|/C = {sci(abs(q[k_max] - c) / c, 2)}")

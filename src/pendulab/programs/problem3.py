@@ -10,7 +10,7 @@ import sys
 import mpmath
 
 from agm import t_hat
-from digits import right
+from digits import beside, right, sci, sci_up
 from length import group_length
 from taylor import taylor
 
@@ -51,7 +51,8 @@ def inverse_cubic(x, y):
     rounding = abs(prod) * math.fsum(
         math.ulp(y[k]) / 2 / abs(math.prod(x[k] - x[i] for i in range(5) if i != k))
         for k in range(5))
-    return {"p0": p, "coef": c, "dd4": c[4], "e0": c[4] * prod, "rounding": rounding}
+    return {"p0": p, "coef": c, "dd4": c[4], "e0": c[4] * prod, "prod": prod,
+            "rounding": rounding}
 
 def period(l, h, reference):
     """3(c)-(d): the bracket, the zero of the line through j and j+1, and p(0)."""
@@ -96,32 +97,50 @@ def order(e0, e1, h0, h1):
     return math.log(e0 / e1) / math.log(h0 / h1)  # e ~ C h^p between two rows
 
 if __name__ == "__main__":
-    l_text = group_length([int(s) for s in sys.argv[1:]] or [262, 407, 634])[2]
+    students = [int(s) for s in sys.argv[1:]] or [262, 407, 634]
+    l_text = group_length(students)[2]
     l = float(l_text)
     reference = t_hat(l, ALPHA)
     t_max, j, over, t = plot_t_max(l, reference)
     print(f"3(b) l = {l_text} m, T^ = {reference:.15g} s,",
-          f"t_max = {t_max:.6g} s; h = 0.2:",
-          f"T in [{t[j]:.6g}, {t[j + 1]:.6g}]" if j is not None else
-          f"over the top at t = {t[over]:.6g}" if over is not None else "no return")
-    print("3(c)  h       j  bracket        linear          error      p(0)")
+          f"t_max = {t_max:.6g} s, N = {round(t_max / 0.2)} steps of h = 0.2")
+    if j is not None:  # where T^ lies: before t_j, inside [t_j, t_(j+1)] or after
+        side = (f"{t[j] - reference:.3g} s before t_{j}" if reference < t[j] else
+                f"{reference - t[j + 1]:.3g} s after t_{j + 1}" if reference > t[j + 1]
+                else f"inside, {reference - t[j]:.3g} s after t_{j}")
+        print(f"     j = {j}: T in [{t[j]:.6g}, {t[j + 1]:.6g}]; T^ {side}")
+    elif over is not None:
+        print(f"     over the top at t = {t[over]:.6g} = {t[over] / reference:.3g} T^")
+    else:
+        print(f"     no return up to t = {SEARCH * reference:.6g}")
+    print("3(c)  h       j  bracket       linear        error    p(0)          error")
     rows = [period(l, h, reference) for h in STEPS]
     for r in rows:
-        print(f"{r['h']:6.0e} {r['j']:6d}  {r['bracket'][0]:.4f} {r['bracket'][1]:.4f}",
-              f"{r['linear']:<15.12g} {abs(r['linear'] - reference):.3e}",
-              f" {r['p0']:.12g}")
+        a, b = r["bracket"]
+        print(f"{r['h']:6.0e} {r['j']:6d}  [{a:.8g}, {b:.8g}]",
+              f"{r['linear']:<14.12g} {sci(abs(r['linear'] - reference), 3):<8}",
+              f"{r['p0']:<14.12g} {sci(abs(r['p0'] - reference), 3)}")
     for a, b in zip(rows, rows[1:]):
-        e0, e1 = abs(a["linear"] - reference), abs(b["linear"] - reference)
+        p = [order(abs(a[k] - reference), abs(b[k] - reference), a["h"], b["h"])
+             for k in ("linear", "p0")]
         print(f"     order from h = {a['h']:.0e} to {b['h']:.0e}:",
-              f"{order(e0, e1, a['h'], b['h']):.2f}")
+              f"{p[0]:.2f} (linear), {p[1]:.2f} (p(0))")
     r = rows[STEPS.index(1e-3)]
     e = rounding_errors(l_text, r)  # only the digits rounding left right are printed
-    print("3(d) h = 1e-3: z2_k, t_k, divided differences (nodes j-1..j+2, j-2)")
+    print(f"3(d) h = 1e-3, j = {r['j']}: z2_k, t_k, divided differences",
+          f"(steps {r['j'] - 1} to {r['j'] + 2}, then {r['j'] - 2})")
     for k in range(5):
         c = right(r["coef"][k], e["coef"][k]) if k else f"{r['t'][0]:.3f}"  # c0 = t_0
         print(f"    {right(r['z2'][k], e['z2'][k]):<18} {r['t'][k]:.3f}  {c}")
     error = abs(r["p0"] - reference)  # the Taylor method's error in the period
-    small = max(abs(r["e0"]), r["rounding"]) < NEGLIGIBLE * error
-    print(f"    p(0) = {r['p0']:.12g}, e(0) ~ {right(r['e0'], e['e0'])}",
-          f"(rounding {r['rounding']:.2e}); |p(0) - T^| = {error:.3e}:",
-          "negligible" if small else "not negligible")
+    bound = max(abs(r["e0"]), r["rounding"])
+    print(f"    p(0) = {r['p0']:.12g}, (0-x0)...(0-x3) = {sci(r['prod'], 6)},",
+          f"e(0) ~ {right(r['e0'], e['e0'])}")
+    # rounding moves e(0) and p(0) by at most e["e0"], e["p0"] (the 30-digit rerun)
+    print(f"    rounding: e(0) by {sci_up(e['e0'], 1)}, p(0) by {sci_up(e['p0'], 1)},",
+          f"the times' level {sci(r['rounding'], 2)};",
+          f"at most about {sci_up(bound + e['e0'], 1)}")
+    ratio = bound / error
+    print(f"    |p(0) - T^| = {sci(error, 3)}; ratio {beside(ratio, NEGLIGIBLE, 1)}:",
+          "negligible" if ratio < NEGLIGIBLE else "not negligible",
+          f"(below {sci(NEGLIGIBLE, 1)})")

@@ -9,7 +9,7 @@ from decimal import ROUND_HALF_UP, Decimal
 import numpy as np
 
 from agm import t_hat
-from digits import up
+from digits import beside, sci, sci_up
 from taylor import taylor
 
 L, ALPHA, H = 3.5, math.pi / 4, 0.01
@@ -85,10 +85,14 @@ def answer(t_max):
     return t, z1, a, r, diag, coef, res, checks(t, z1, a)
 
 if __name__ == "__main__":
+    reference = t_hat(L, ALPHA)
+    print(f"l = {L:g} m, alpha = pi/4: T^ = {reference:.15g} s,",
+          f"2 pi/T^ = {2 * math.pi / reference:.6g} rad/s; h = {H:g}")
     # t_max = ceil(T^) as 4(a) says, and t_max = 6, the 601 points Y_0..Y_600 it names
-    for t_max in (math.ceil(t_hat(L, ALPHA)), 6):
+    for t_max in (math.ceil(reference), 6):
         t, z1, a, r, diag, coef, res, (low, high, cond, moved, svd) = answer(t_max)
-        print(f"4(a) t_max = {t_max} s, {len(t)} points; the last 10:")
+        n = len(t) - 1
+        print(f"4(a) t_max = {t_max} s, N = {n}, {n + 1} points; the last 10:")
         for j in range(len(t) - 10, len(t)):
             print(f"    {j:4d} {t[j]:5.2f} {z1[j]:.12g}")
         print("4(c) A | r, symmetric:", bool(np.array_equal(a, a.T)))
@@ -96,11 +100,14 @@ if __name__ == "__main__":
             print("    " + " ".join(f"{v:10.6f}" for v in row) + f" | {ri:.6f}")
         print(f"     Cholesky pivots L_kk^2 > 0, the smallest {diag.min() ** 2:.6g};",
               f"eigenvalues in [{low:.6g}, {high:.6g}], condition number {cond:.4g}")
-        print(f"     ||A - A unrounded||_2 <= {up(moved, 2)}")
+        print(f"     ||A - A unrounded||_2 <= {sci_up(moved, 2)}")
         print("4(d)        normal equations   lstsq (SVD)")
         for name, c, c_svd in zip(NAMES, coef, svd):
             print(f"     {name:5s} {c:<18.10g} {c_svd:.10g}")
+        shift = sci_up(np.max(np.abs(coef - svd)), 2)
+        print(f"     the rounding of A, r moves the coefficients by at most {shift}")
         j = int(np.argmax(np.abs(res)))
-        print(f"     sum of squared deviations {math.fsum(res**2):.6e}")
-        print(f"     max |z1_j - phi(t_j)| = {abs(res[j]):.4e} at t = {t[j]:.2f}:",
-              "below" if abs(res[j]) < TOL else "not below", TOL)
+        print(f"     sum of squared deviations {sci(math.fsum(res**2), 6)}")
+        print(f"     max |z1_j - phi(t_j)| = {beside(abs(res[j]), TOL, 4)}",
+              f"at t = {t[j]:.6g}:", "below" if abs(res[j]) < TOL else "not below",
+              sci(TOL, 1))

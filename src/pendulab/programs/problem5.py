@@ -9,10 +9,11 @@ import math
 import numpy as np
 
 from agm import G, t_hat
-from digits import right
+from digits import right, sci
 
 L, ALPHA = 3.5, 4 * math.pi / 5
 U = 2.0**-53  # the unit roundoff of double precision
+FLOOR = 128  # 5(d): an error below 128 u T^ is rounding, not the rule's
 
 def integrand(theta):
     """1/sqrt(cos theta - cos alpha), with cos x - cos y = 2 sin((y+x)/2) sin((y-x)/2):
@@ -58,15 +59,30 @@ def table(reference):
         rows.append((10**k, p, e, math.log10(rows[-1][2] / e)))
     return rows
 
+def substituted(n):
+    """5(d), beside (11) on (1): sin(theta/2) = k sin(phi), k = sin(alpha/2), turns
+    (1) into T = 4 sqrt(l/g) int_0^(pi/2) dphi / sqrt(1 - k^2 sin^2 phi), an analytic
+    integrand: S_n on it."""
+    k = math.sin(ALPHA / 2)
+    f = lambda phi: 1 / np.sqrt(1 - (k * np.sin(phi)) ** 2)  # noqa: E731
+    return 4 * math.sqrt(L / G) * gauss3(f, 0.0, math.pi / 2, n)
+
 if __name__ == "__main__":
     reference = t_hat(L, ALPHA)
     rows = table(reference)
-    print(f"T^ = {reference:.15g} s")
+    print(f"l = {L:g} m, T^ = {reference:.15g} s")
     # each estimate with the digits its rounding error (rounding_error) leaves right
     print(f"5(b) one application: {right(rows[0][1], rounding_error(1))} s,",
-          f"error {rows[0][2]:.3e}")
+          f"error {sci(rows[0][2], 3)}")
     print(f"5(c) n = 10:          {right(rows[1][1], rounding_error(10))} s,",
-          f"error {rows[1][2]:.3e}")
-    print("5(d)      n  estimate            error      rate")
+          f"error {sci(rows[1][2], 3)}")
+    print("5(d)      n  estimate            error     rate    substituted       error")
+    floor = FLOOR * U * reference
+    first = None  # the first n whose substituted error is at the floor
     for n, p, e, rate in rows[1:]:
-        print(f"    {n:6d}  {right(p, rounding_error(n)):<18}  {e:.3e}  {rate:.4f}")
+        s = substituted(n)
+        first = first or (n if abs(s - reference) <= floor else None)
+        print(f"    {n:6d}  {right(p, rounding_error(n)):<18}  {sci(e, 3):<8}",
+              f" {rate:.4f}   {s:<17.15g} {sci(abs(s - reference), 2)}")
+    print(f"     rounding floor 128 u T^ = {sci(floor, 1)} s,",
+          f"first reached at n = {first}")

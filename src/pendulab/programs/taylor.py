@@ -30,5 +30,6 @@ def list_ii(t, z1, z2):
 
 if __name__ == "__main__":  # 3(a): l = 1, alpha = pi/4, h = 0.1, t in [0, 2.1]
     t, z1, z2 = taylor(1.0, math.pi / 4, 0.1, 2.1)
+    print(f"N = {len(t) - 1} steps of h = 0.1 on [0, 2.1]")
     for ti, (a, b) in zip(t, list_ii(t, z1, z2)):
         print(f"{ti:4.1f} {a:16.12g} {b:16.12g}")

@@ -81,6 +81,7 @@ def _progress(show: bool) -> _Quiet | _Bar:
 def new_doc(students: Sequence[int], lang: str, folder: Path) -> Doc:
     doc = Doc(lang, load_catalogue(lang), folder)
     doc.set(students=", ".join(map(str, students)), **{"students.csv": ",".join(map(str, students))})
+    doc.set(engine=doc.word("engine"))  # the words that open a sentence of the engine's numbers
     return doc
 
 

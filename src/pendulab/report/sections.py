@@ -4,7 +4,7 @@ and figures to the Doc.
 The coursework's numbers come from the programs of :mod:`pendulab.jobs.coursework` (the files
 the appendix prints whole), run here for this group; the engine (:mod:`pendulab.jobs.problems`,
 :mod:`pendulab.numerics.period`) adds what goes beyond the coursework (certified digits, the exact
-motion, the substituted integral, the SVD fit); ``plots.py`` draws every figure from the
+motion, in sentences opened by the catalogue's ``engine`` words); ``plots.py`` draws every figure from the
 programs' data. A section decides no answer of its own: it picks the catalogue's words
 for what the programs printed.
 """
@@ -357,40 +357,38 @@ def problem4(doc: Doc, students: Sequence[int]) -> None:
 
 # ----------------------------------------------------------------------------- problem 5
 def problem5(doc: Doc, students: Sequence[int]) -> None:
-    from ..jobs import problems
     from .figures import words
 
     p5, plots = programs()["problem5.py"], programs()["plots.py"]
     t_hat = programs()["agm.py"].t_hat(p5.L, p5.ALPHA)
     table = p5.table(t_hat)  # (n, period by S_n, error, rate) for n = 1, 10, ..., 10^5
-    # Beyond the coursework, from the engine: the substituted integral.
-    r = problems.problem5()
-    sub = {row.n: row for row in r.rows}
-    floor = r.rounding_floor
+    # The substituted integral by the same rule, as problem5.py prints it; the rounding floor.
+    sub = {n: p5.substituted(n) for n, *_ in table[1:]}
+    floor = p5.FLOOR * p5.U * t_hat
+    conv = next((n for n, s in sub.items() if abs(s - t_hat) <= floor), None)
 
     def sub_error(e: float) -> str:
         """An error at or below the rounding floor is rounding: its digits say nothing (against
-        T^, itself a double), so it prints as the floor it is under."""
+        T^, itself a double), so it prints as the floor it is under (as problem5.py does)."""
         return f"≤ {sci_up(floor, 1)}" if e <= floor else sci(e, 2)
 
     doc.tables["p5d"] = [[
         integer(n), err(period, p5.rounding_error(n)), sci(error, 3), fixed(rate, 4),
-        num(sub[n].substitution_estimate, 15), sub_error(sub[n].substitution_error),
+        num(sub[n], 15), sub_error(abs(sub[n] - t_hat)),
     ] for n, period, error, rate in table[1:]]
     w = words(doc.catalogue)  # figure R5, drawn by plots.py from the program's table
     doc.figure("p5d_conv", lambda ax: plots.figure5(ax, [row[0] for row in table[1:]], [row[2] for row in table[1:]], w),
                height=6.2 / 2.54)
     single, ten, last = table[0], table[1], table[-1]
-    conv = r.substitution_converged_n
     doc.set(**{
         "p5.l": num(p5.L, 4), "p5.t_hat": shown("t_hat", t_hat),
         "p5.q1": err(single[1], p5.rounding_error(1)), "p5.e1": sci(single[2], 3),
         "p5.s10": err(ten[1], p5.rounding_error(10)), "p5.e10": sci(ten[2], 3),
         "p5.rate": fixed(last[3], 4),
         "p5.elast": sci(last[2], 3), "p5.nlast": integer(last[0]),
-        "p5.floor": sci(r.rounding_floor, 1),
+        "p5.floor": sci(floor, 1),
         "p5.subn": "—" if conv is None else integer(conv),
-        "p5.sub10": sub_error(sub[10].substitution_error),
+        "p5.sub10": sub_error(abs(sub[10] - t_hat)),
         "p5.offset": num(plots.GUIDE, 2),
     })
     doc.choose("p5.sub", "converged" if conv is not None else "not_converged")
