@@ -8,9 +8,8 @@ from decimal import ROUND_CEILING, Context, Decimal
 EXACT = Context(prec=800)  # every digit of a double's exact decimal value
 
 def right(x, error, most=17):
-    """x rounded to the place 10^q its error allows, with at most `most` significant
-    digits (half to even, on the exact value): plain for |x| in [10^-3, 10^6) when
-    q <= 0, else m.mme-k; 0 when |x| <= 0.5 10^q."""
+    """x to the place 10^q its error allows, at most `most` digits (half to even on the
+    exact value): plain in [1e-3, 1e6) if q <= 0, else m.mme-k; 0 if |x| <= 0.5 10^q."""
     e = abs(Decimal(error))
     q = e.adjusted() + 2  # e < 10^(q-1), so e <= 0.5 10^q
     while Decimal(5).scaleb(q - 2) >= e:  # and one place further still holds
@@ -32,12 +31,9 @@ def sci(x, n, plain=(0.1, 1000)):
         return "0"
     mant, k = f"{x:.{n - 1}e}".split("e")
     k = int(k)  # the power of ten of x rounded (9.996 -> 1.00e1)
-    if not plain[0] <= abs(float(f"{x:.{n - 1}e}")) < plain[1]:
-        return f"{mant}e{k}"
-    if n - 1 - k >= 0:
+    if plain[0] <= abs(float(f"{x:.{n - 1}e}")) < plain[1] and n - 1 - k >= 0:
         return f"{x:.{n - 1 - k}f}"
-    # tens and beyond with fewer digits: plain only in the wide range (120, not 1.2e2)
-    return f"{float(f'{x:.{n - 1}e}'):.0f}" if plain[1] > 1000 else f"{mant}e{k}"
+    return f"{mant}e{k}"
 
 def up(x, n, plain=(1e-3, 1e6)):
     """|x| rounded up to n significant digits (plain for |x| in [10^-3, 10^6))."""

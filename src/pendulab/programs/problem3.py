@@ -141,6 +141,9 @@ if __name__ == "__main__":
           f"the times' level {sci(r['rounding'], 2)};",
           f"at most about {sci_up(bound + e['e0'], 1)}")
     ratio = bound / error
-    print(f"    |p(0) - T^| = {sci(error, 3)}; ratio {beside(ratio, NEGLIGIBLE, 1)}:",
+    # one digit, on its side of NEGLIGIBLE, unless e(0)'s rounding leaves less
+    shown = right(ratio, e["e0"] / error, 1)
+    shown = beside(ratio, NEGLIGIBLE, 1) if shown == sci(ratio, 1) else shown
+    print(f"    |p(0) - T^| = {sci(error, 3)}; ratio {shown}:",
           "negligible" if ratio < NEGLIGIBLE else "not negligible",
           f"(below {sci(NEGLIGIBLE, 1)})")

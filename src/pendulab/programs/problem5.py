@@ -9,7 +9,7 @@ import math
 import numpy as np
 
 from agm import G, t_hat
-from digits import right, sci
+from digits import right, sci, sci_up
 
 L, ALPHA = 3.5, 4 * math.pi / 5
 U = 2.0**-53  # the unit roundoff of double precision
@@ -60,9 +60,8 @@ def table(reference):
     return rows
 
 def substituted(n):
-    """5(d), beside (11) on (1): sin(theta/2) = k sin(phi), k = sin(alpha/2), turns
-    (1) into T = 4 sqrt(l/g) int_0^(pi/2) dphi / sqrt(1 - k^2 sin^2 phi), an analytic
-    integrand: S_n on it."""
+    """5(d): sin(theta/2) = k sin(phi), k = sin(alpha/2), turns (1) into the analytic
+    T = 4 sqrt(l/g) int_0^(pi/2) dphi / sqrt(1 - k^2 sin^2 phi): S_n on it."""
     k = math.sin(ALPHA / 2)
     f = lambda phi: 1 / np.sqrt(1 - (k * np.sin(phi)) ** 2)  # noqa: E731
     return 4 * math.sqrt(L / G) * gauss3(f, 0.0, math.pi / 2, n)
@@ -82,7 +81,10 @@ if __name__ == "__main__":
     for n, p, e, rate in rows[1:]:
         s = substituted(n)
         first = first or (n if abs(s - reference) <= floor else None)
+        # at or below the floor an error is rounding: it is printed as <= the floor
+        d = abs(s - reference)
+        d = f"<= {sci_up(floor, 1)}" if d <= floor else sci(d, 2)
         print(f"    {n:6d}  {right(p, rounding_error(n)):<18}  {sci(e, 3):<8}",
-              f" {rate:.4f}   {s:<17.15g} {sci(abs(s - reference), 2)}")
+              f" {rate:.4f}   {s:<17.15g} {d}")
     print(f"     rounding floor 128 u T^ = {sci(floor, 1)} s,",
           f"first reached at n = {first}")
