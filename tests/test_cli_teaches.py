@@ -20,6 +20,7 @@ from pendulab.cli import cli as group
 from pendulab.cli.examples import EXAMPLES
 from pendulab.numerics.period import agm_period, periods
 from reference import G_TEXT, reference_period
+from signals import default_signals
 
 #: Examples that take seconds (Typst, a compiled sweep, the key's 2 groups): the slow tier.
 SLOW = {"report", "key", "mark", "sweep", "fit", "approximations"}
@@ -71,7 +72,7 @@ def test_each_serve_example_serves_until_ctrl_c(tmp_path, line):
     else:
         args += ["--port", port]
     proc = subprocess.Popen([sys.executable, "-m", "pendulab", *args], stderr=subprocess.PIPE, text=True,
-                            env=os.environ | {"PYTHONUNBUFFERED": "1"})
+                            env=os.environ | {"PYTHONUNBUFFERED": "1"}, preexec_fn=default_signals)
     try:
         first = proc.stderr.readline()
         assert f"http://127.0.0.1:{port}/" in first, first

@@ -17,23 +17,16 @@ from hypothesis import strategies as st
 from pendulab.core.interrupt import deferred, pieces
 from pendulab.engine import kernels
 from reference import EXAMPLE_LENGTH, G
+from signals import default_signals, python_sigint
 
 METHODS = [(0, 2), (1, 4), (2, 2), (3, 1), (3, 5), (3, 12)]  # taylor2, rk4, verlet, taylor:1, 5, 12
-
-
-def _default_sigint() -> None:
-    """In a child before it runs Python: Ctrl+C's default action, whatever the test run
-    inherited. A run in the background or under nohup starts with SIGINT ignored, which
-    the child would inherit and keep (as pendulab should): then no SIGINT reaches it."""
-    signal.signal(signal.SIGINT, signal.SIG_DFL)
 
 
 @pytest.fixture
 def sigint_handler():
     """Python's own SIGINT handler (KeyboardInterrupt) for the test, whatever the run inherited."""
-    old = signal.signal(signal.SIGINT, signal.default_int_handler)
-    yield
-    signal.signal(signal.SIGINT, old)
+    with python_sigint():
+        yield
 
 
 def _one_call(method, order, alpha, c, h, n):
@@ -152,7 +145,7 @@ def _signal_run(args, delay, sig, tmp_path, **more_env):
     tmpdir = tmp_path / "tmp"
     tmpdir.mkdir(exist_ok=True)
     env = {**os.environ, "TMPDIR": str(tmpdir), "PYTHONUNBUFFERED": "1", **more_env}
-    proc = subprocess.Popen([sys.executable, "-m", "pendulab", *map(str, args)], preexec_fn=_default_sigint,
+    proc = subprocess.Popen([sys.executable, "-m", "pendulab", *map(str, args)], preexec_fn=default_signals,
                             cwd=tmp_path, env=env,
                             stdout=subprocess.DEVNULL, stderr=subprocess.PIPE, text=True)
     start = time.monotonic()
@@ -258,7 +251,7 @@ def test_a_signal_between_the_key_and_its_class_file_waits_for_both(tmp_path, si
         "from pendulab.__main__ import run\n"
         "sys.exit(run())\n"
     )
-    res = subprocess.run([sys.executable, "-c", code], preexec_fn=_default_sigint,
+    res = subprocess.run([sys.executable, "-c", code], preexec_fn=default_signals,
                          cwd=tmp_path, capture_output=True, text=True, timeout=300,
                          env={**os.environ, "TMPDIR": str(tmp_path)})
     word, status = ("interrupted", 130) if sig == signal.SIGINT else ("terminated", 143)
@@ -276,7 +269,7 @@ def test_ctrl_c_while_the_command_line_loads_is_one_line():
     env = {**os.environ, "PYTHONUNBUFFERED": "1"}
     for delay in (0.0, 0.0005, 0.001, 0.002, 0.004, 0.008, 0.016):
         proc = subprocess.Popen([sys.executable, "-X", "importtime", "-m", "pendulab", "length", "262", "407", "634"],
-                                preexec_fn=_default_sigint,
+                                preexec_fn=default_signals,
                                 stdout=subprocess.DEVNULL, stderr=subprocess.PIPE, text=True, env=env)
         assert proc.stderr is not None
         loaded = []
@@ -333,7 +326,7 @@ def test_a_signal_while_a_kernel_compiles_ends_the_run(tmp_path, args, k, sig):
     No output file is written, no temporary file left."""
     code = _IN_COMPILE.format(k=k, sig=int(sig), args=args)
     env = {**os.environ, "NUMBA_CACHE_DIR": str(tmp_path / "numba"), "TMPDIR": str(tmp_path)}
-    res = subprocess.run([sys.executable, "-c", code], preexec_fn=_default_sigint,
+    res = subprocess.run([sys.executable, "-c", code], preexec_fn=default_signals,
                          cwd=tmp_path, capture_output=True, text=True,
                          timeout=600, env=env)
     word, status = ("interrupted", 130) if sig == signal.SIGINT else ("terminated", 143)
@@ -361,11 +354,11 @@ def test_a_signal_stops_a_long_sweep_on_threads_within_seconds(tmp_path, method)
     run ends with its one line and 130 (143) within 10 s, with no output file."""
     env = {**os.environ, "NUMBA_NUM_THREADS": "2", "TMPDIR": str(tmp_path)}
     warm = ["sweep", "--amplitude", "1:2:2", "--step", "1e-2", "--method", method]  # kernels compiled first
-    subprocess.run([sys.executable, "-m", "pendulab", *warm], preexec_fn=_default_sigint,
+    subprocess.run([sys.executable, "-m", "pendulab", *warm], preexec_fn=default_signals,
                    env=env, capture_output=True, timeout=600, check=True)
     args = ["sweep", "--amplitude", "170deg:179deg:32", "--step", "1e-7", "--method", method, "--output", "out.csv"]
     for delay, sig in ((1.0, signal.SIGINT), (3.0, signal.SIGTERM), (5.0, signal.SIGINT)):
-        proc = subprocess.Popen([sys.executable, "-m", "pendulab", *args], preexec_fn=_default_sigint,
+        proc = subprocess.Popen([sys.executable, "-m", "pendulab", *args], preexec_fn=default_signals,
                                 cwd=tmp_path, env=env,
                                 stdout=subprocess.DEVNULL, stderr=subprocess.PIPE, text=True)
         start = time.monotonic()
@@ -398,7 +391,7 @@ def test_a_signal_during_the_servers_warm_up_stops_it_with_its_line(tmp_path, si
         with socket.socket() as s:
             s.bind(("127.0.0.1", 0))
             port = s.getsockname()[1]
-        proc = subprocess.Popen([sys.executable, "-m", "pendulab", "serve", "--port", str(port)], preexec_fn=_default_sigint,
+        proc = subprocess.Popen([sys.executable, "-m", "pendulab", "serve", "--port", str(port)], preexec_fn=default_signals,
                                 cwd=tmp_path, env=env,
                                 stdout=subprocess.DEVNULL, stderr=subprocess.PIPE, text=True)
         assert proc.stderr is not None
@@ -429,13 +422,13 @@ def test_a_daemon_thread_still_at_work_ends_the_process_without_pythons_shutdown
         "from pendulab.__main__ import run\n"
         "sys.exit(run())\n"
     )
-    res = subprocess.run([sys.executable, "-c", code], preexec_fn=_default_sigint,
+    res = subprocess.run([sys.executable, "-c", code], preexec_fn=default_signals,
                          capture_output=True, text=True, timeout=120)
     assert res.returncode == 0, res.stderr
     assert res.stdout.startswith("period, AGM (7)-(8)"), res.stdout
     assert "shutdown ran" not in res.stdout
     # Without a daemon thread at work, the shutdown runs as usual.
     plain = code.replace("threading.Thread(target=time.sleep, args=(60,), daemon=True).start()\n", "")
-    res = subprocess.run([sys.executable, "-c", plain], preexec_fn=_default_sigint,
+    res = subprocess.run([sys.executable, "-c", plain], preexec_fn=default_signals,
                          capture_output=True, text=True, timeout=120)
     assert res.returncode == 0 and "shutdown ran" in res.stdout, res.stderr

@@ -31,6 +31,7 @@ from pendulab.core import atomic, inputs
 from pendulab.core.errors import InputError
 from pendulab.core.streams import CheckedText, WriteError, write_all
 from pendulab.report.key import FORMULA_STARTS, plain_cell
+from signals import default_signals
 
 
 def pendulab(*args, stdin=subprocess.DEVNULL, stdout=subprocess.PIPE, stderr=subprocess.PIPE, env=None,
@@ -317,7 +318,8 @@ def test_sighup_and_sigquit_end_a_run_like_sigterm(tmp_path, sig, word):
     stopped = 0
     for i in range(5):
         proc = subprocess.Popen([sys.executable, "-m", "pendulab", *ESTIMATE], stdout=subprocess.DEVNULL,
-                                stderr=subprocess.PIPE, env={**os.environ, "TMPDIR": str(tmpdir)})
+                                stderr=subprocess.PIPE, env={**os.environ, "TMPDIR": str(tmpdir)},
+                                preexec_fn=default_signals)
         for _ in range(6000):
             if _handled(proc.pid, sig) or proc.poll() is not None:
                 break
@@ -342,7 +344,7 @@ def test_sighup_during_the_key_keeps_the_old_pair(tmp_path):
         out.write_text("old key\n")
         side.write_text("old class\n")
         proc = subprocess.Popen([sys.executable, "-m", "pendulab", "key", "--groups", groups, "--output", out],
-                                stdout=subprocess.DEVNULL, stderr=subprocess.PIPE)
+                                stdout=subprocess.DEVNULL, stderr=subprocess.PIPE, preexec_fn=default_signals)
         for _ in range(6000):
             if _handled(proc.pid, signal.SIGHUP) or proc.poll() is not None:
                 break
@@ -379,7 +381,7 @@ def test_a_swallowed_signal_still_ends_the_command_before_its_output(tmp_path):
         "from pendulab.__main__ import run\n"
         "sys.exit(run())\n"
     )
-    res = subprocess.run([sys.executable, "-c", code], capture_output=True, timeout=300)
+    res = subprocess.run([sys.executable, "-c", code], capture_output=True, timeout=300, preexec_fn=default_signals)
     assert res.returncode == 143 and res.stderr.decode().splitlines() == ["pendulab key: terminated"], res.stderr
     assert out.read_text() == "old"
 

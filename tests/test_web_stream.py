@@ -22,6 +22,7 @@ from pendulab.engine.kernels import drive
 from pendulab.numerics import simulation
 from pendulab.numerics.simulation import method_code
 from pendulab.web import parameters, sampling
+from signals import python_sigint
 
 
 def reference(theta, omega, nb, samples, alpha, omega0, c):
@@ -166,10 +167,6 @@ def test_ctrl_c_stops_the_pass_between_pieces(monkeypatch):
         return out
 
     monkeypatch.setattr(kernels, "drive", counted)
-    old = signal.signal(signal.SIGINT, signal.default_int_handler)  # a run in the background inherits it ignored
-    try:
-        with pytest.raises(KeyboardInterrupt):
-            kernels.folded(code, order, 1.0, 0.0, -9.80665, 1e-5, n, 100, np.array([0, n]), CHUNK_COST)
-    finally:
-        signal.signal(signal.SIGINT, old)
+    with python_sigint(), pytest.raises(KeyboardInterrupt):  # a run in the background inherits it ignored
+        kernels.folded(code, order, 1.0, 0.0, -9.80665, 1e-5, n, 100, np.array([0, n]), CHUNK_COST)
     assert len(calls) == 3 and calls[-1][1] == 3 * CHUNK_COST < n
