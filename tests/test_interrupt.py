@@ -409,6 +409,50 @@ def test_a_signal_during_the_servers_warm_up_stops_it_with_its_line(tmp_path, si
         shutil.rmtree(tmp_path / "numba", ignore_errors=True)  # each try compiles afresh
 
 
+@pytest.mark.slow
+def test_ctrl_c_while_serve_imports_on_a_cold_cache_ends_it_with_its_line(tmp_path):
+    """``pendulab serve`` on an empty numba cache: Ctrl+C at moments spread over its imports
+    (the web app's, while the warm-up thread imports and compiles the kernels), before the
+    banner. A KeyboardInterrupt that Python raised inside a callback there (a module lock's
+    weak reference) cannot propagate: ``core.interrupt.unraisable`` keeps it silent and the
+    command's ``check_signals`` ends it before the server starts. Each try: 130 and one line,
+    no "Exception ignored", no traceback, and the process ends by itself (never serves on)."""
+    pytest.importorskip("uvicorn")
+    import socket
+
+    early = 0
+    for i, delay in enumerate((0.0, 0.05, 0.1, 0.2, 0.3, 0.45, 0.6, 0.8, 1.0)):
+        with socket.socket() as s:
+            s.bind(("127.0.0.1", 0))
+            port = s.getsockname()[1]
+        env = {**os.environ, "NUMBA_CACHE_DIR": str(tmp_path / f"numba{i}"), "TMPDIR": str(tmp_path),
+               "PYTHONUNBUFFERED": "1"}
+        proc = subprocess.Popen([sys.executable, "-m", "pendulab", "serve", "--port", str(port)],
+                                preexec_fn=default_signals, cwd=tmp_path, env=env,
+                                stdout=subprocess.DEVNULL, stderr=subprocess.PIPE, text=True)
+        try:
+            start = time.monotonic()
+            while not _handled(proc.pid) and proc.poll() is None and time.monotonic() - start < 60:
+                time.sleep(0.002)
+            time.sleep(delay)
+            proc.send_signal(signal.SIGINT)
+            # a hang guard, not a speed claim: a swallowed Ctrl+C would leave the server serving
+            _, err = proc.communicate(timeout=120)
+        finally:
+            if proc.poll() is None:
+                proc.kill()
+                proc.wait()
+        lines = err.splitlines()
+        assert proc.returncode == 130, (delay, proc.returncode, err)
+        assert "Traceback" not in err and "Exception ignored" not in err, (delay, err)
+        if lines and lines[0].startswith("pendulab explorer: "):  # the imports were over: serving
+            assert lines[1:] == ["pendulab serve: interrupted"], (delay, err)
+        else:
+            early += 1
+            assert lines in (["pendulab serve: interrupted"], ["pendulab: interrupted"]), (delay, err)
+    assert early >= 3, "too few tries landed before the banner to test the imports"
+
+
 def test_a_daemon_thread_still_at_work_ends_the_process_without_pythons_shutdown():
     """After the command, a daemon thread still running (serve's warm-up compiling a kernel
     when Ctrl+C stopped the server) ends the process at once with the command's status and
