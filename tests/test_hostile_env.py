@@ -11,7 +11,6 @@ import stat
 import subprocess
 import sys
 import threading
-import time
 from pathlib import Path
 
 import numpy as np
@@ -47,9 +46,9 @@ def test_groups_from_an_endless_device_are_refused_at_the_byte_cap(cli, device):
 def test_groups_from_a_named_pipe_with_no_writer_do_not_hang(tmp_path):
     fifo = tmp_path / "groups.fifo"
     os.mkfifo(fifo)
-    t = time.monotonic()
-    res = _pendulab("key", "--groups", fifo, timeout=60)
-    assert time.monotonic() - t < 30
+    # A hang guard, not a speed claim: an open that waits for a writer never returns, and
+    # subprocess.run's timeout then fails the test (TimeoutExpired).
+    res = _pendulab("key", "--groups", fifo, timeout=120)
     assert res.returncode == 2 and len(res.stderr.strip().splitlines()) == 1, res.stderr
     assert "--groups" in res.stderr and "at least one group" in res.stderr
 
@@ -180,15 +179,20 @@ def test_a_symlink_is_written_through(tmp_path):
     assert sorted(p.name for p in tmp_path.iterdir()) == ["link.csv", "real.csv"]
 
 
-def test_a_read_only_output_is_refused_before_the_work(cli, tmp_path):
+def test_a_read_only_output_is_refused_before_the_work(cli, monkeypatch, tmp_path):
+    from pendulab.jobs import key as answer
+
     groups = _groups(tmp_path)
     out = tmp_path / "key.csv"
     out.write_text("teacher's key")
     os.chmod(out, 0o444)
-    t = time.monotonic()
+    worked = []
+    real = answer.answer_key
+    monkeypatch.setattr(answer, "answer_key", lambda *a, **k: worked.append(1) or real(*a, **k))
     res = cli("key", "--groups", groups, "--output", out)
     assert_one_line_error(res, "--output", "read-only")
-    assert out.read_text() == "teacher's key" and time.monotonic() - t < 5
+    assert out.read_text() == "teacher's key"
+    assert worked == []  # refused before the key was computed
 
 
 @pytest.mark.parametrize("special", ["link to /dev/null", "fifo"])
@@ -360,7 +364,6 @@ def test_a_scheduler_port_that_is_not_dask_is_one_line(cli, monkeypatch, reply):
                 conn.sendall(reply)
 
     threading.Thread(target=serve, daemon=True).start()
-    t = time.monotonic()
     try:
         res = cli("sweep", "--amplitude", "0.1:1:3", "--step", "1e-2", "--method", "taylor2",
                   "--scheduler", f"tcp://127.0.0.1:{server.getsockname()[1]}")
@@ -368,8 +371,8 @@ def test_a_scheduler_port_that_is_not_dask_is_one_line(cli, monkeypatch, reply):
         server.close()
         for c in held:
             c.close()
+    # without the bound the call never returns (a hang, not a failure): the bound is what answers
     assert_one_line_error(res, "--scheduler", "reachable Dask scheduler")
-    assert time.monotonic() - t < 60  # without the bound: for ever
 
 
 # --- Finding 5 (CLI): work weighed by the method's cost --------------------------------------------
