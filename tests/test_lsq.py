@@ -6,6 +6,8 @@ from fractions import Fraction
 import numpy as np
 import pytest
 import scipy.linalg
+from hypothesis import given
+from hypothesis import strategies as st
 
 from pendulab.core.errors import InputError, NumericalError
 from pendulab.jobs.problems import problem4
@@ -34,6 +36,20 @@ def test_round_half_up_on_exact_values():
     for bad in (-1, 16, 1.5, "6"):
         with pytest.raises(InputError):
             round_half_up(1.0, bad)
+
+
+@given(st.floats(allow_nan=True, allow_infinity=True), st.integers(0, 15))
+def test_round_half_up_takes_every_double(x, decimals):
+    """Every double, the largest and the non-finite included, rounds as exact rationals say:
+    the nearest multiple of 10^-decimals to its exact value, ties away from zero."""
+    got = float(round_half_up(x, decimals))
+    if not math.isfinite(x):
+        assert got == x or (math.isnan(got) and math.isnan(x))
+        return
+    q = Fraction(1, 10**decimals)
+    f = abs(Fraction(x)) / q
+    n = math.floor(f) + (1 if f - math.floor(f) >= Fraction(1, 2) else 0)
+    assert got == math.copysign(float(n * q), x)
 
 
 def test_data_follow_the_formulas(p4):

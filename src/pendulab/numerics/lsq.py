@@ -31,7 +31,7 @@ from __future__ import annotations
 import math
 from collections.abc import Callable, Sequence
 from dataclasses import dataclass
-from decimal import ROUND_HALF_UP, Decimal
+from decimal import ROUND_HALF_UP, Context, Decimal, localcontext
 
 import numpy as np
 
@@ -68,7 +68,11 @@ def round_half_up(x, decimals: int) -> np.ndarray:
     decimals = v.integer("decimals", decimals, 0, MAX_DECIMALS)
     q = Decimal(1).scaleb(-decimals)
     a = np.asarray(x, dtype=float)
-    out = np.array([float(Decimal(float(t)).quantize(q, rounding=ROUND_HALF_UP)) for t in a.ravel()])
+    # 309 integer digits (the largest double) plus the decimals: the quantised value is exact;
+    # the default 28 digits would refuse 1e20 at 15 decimals. Inf and NaN have no decimals.
+    with localcontext(Context(prec=330)):
+        out = np.array([float(Decimal(t).quantize(q, rounding=ROUND_HALF_UP)) if math.isfinite(t) else t
+                        for t in map(float, a.ravel())])
     return out.reshape(a.shape)
 
 
