@@ -46,6 +46,11 @@ def find_chromium(playwright=None) -> str:
     raise LookupError(HOW_TO_GET_ONE)
 
 
+#: The five screens every layout test of the explorer runs at: a phone, a tablet upright and on
+#: its side, a laptop and a full-HD projector (width, height in CSS px).
+VIEWPORTS = [(390, 844), (768, 1024), (1024, 768), (1400, 900), (1920, 1080)]
+
+
 #: Chromium's switches for the tests: headless, and no network of its own (QUIC, updates, sync).
 ARGS = [
     "--headless", "--no-sandbox", "--disable-gpu", "--disable-quic", "--no-first-run",

@@ -20,7 +20,7 @@ import pytest
 from PIL import Image
 from playwright.sync_api import TimeoutError as PlaywrightTimeoutError
 
-from _browser import launched, record_errors
+from _browser import VIEWPORTS, launched, record_errors
 from pendulab.core import methods
 from pendulab.core.inputs import parse_angle
 from pendulab.numerics import simulation
@@ -199,7 +199,6 @@ def test_play_pause(page, server):
 # ---------------------------------------------------------------- every screen, every state
 
 LONG_RUN = "/?length=1&amplitude=30&unit=deg&g=9.80665&method=taylor2&step=1e-3&t_max=2000"
-VIEWPORTS = [(390, 844), (768, 1024), (1024, 768), (1400, 900), (1920, 1080)]
 
 
 def open_page(browser, server, url: str, width: int = 1400, height: int = 1100):

@@ -108,3 +108,27 @@ def test_every_key_the_page_names_is_in_the_catalogues():
 def test_the_scan_finds_a_missing_key(tmp_path):
     """The check above can fail: a key that no catalogue has is found by the same expression."""
     assert re.findall(r'\bword\("([^"$]+)"\s*[,)]', 'x = word("page.no-such-key");') == ["page.no-such-key"]
+
+
+@pytest.mark.parametrize("field, bad, en, pt", [
+    ("length", "0", "length = 0 is not allowed: must be a finite number > 0, optionally with a unit: m, cm, mm (default m)",
+     "comprimento = 0 não é permitido: deve ser um número finito > 0, com ou sem unidade: m, cm, mm (por omissão m)"),
+    ("g", "0", "g = 0 is not allowed: must be a finite number > 0 (m/s^2), such as 9.80665",
+     "g = 0 não é permitido: deve ser um número finito > 0 (m/s^2), como 9,80665"),
+    ("mass", "-1", "mass = -1 is not allowed: must be a finite number > 0 (kg), such as 0.2: the bob's mass (the energies in J; not the period)",
+     "massa = -1 não é permitido: deve ser um número finito > 0 (kg), como 0,2: a massa do peso (as energias em J; não o período)"),
+])
+def test_a_bad_input_is_refused_in_the_language_asked(client, field, bad, en, pt):
+    q = {"length": "1", "amplitude": "0.5", "step": "0.01", "t_max": "2"} | {field: bad}
+    for lang, message in (("en", en), ("pt", pt)):
+        r = client.get("/api/simulate", params=q | {"lang": lang})
+        assert r.status_code == 422
+        err = r.json()["error"]
+        assert err["field"] == field and err["value"] == bad and err["message"] == message
+
+
+def test_the_methods_are_described_in_portuguese(client):
+    body = client.get("/api/config", params={"lang": "pt"}).json()
+    said = {m["name"]: m["description"] for m in body["methods"] + body["family"]}
+    assert said["rk4"] == "Runge-Kutta clássico, ordem 4" and said["taylor:1"].endswith("(método de Euler)")
+    assert said["taylor:7"] == "método de Taylor de ordem 7"

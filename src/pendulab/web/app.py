@@ -55,7 +55,7 @@ from starlette.exceptions import HTTPException as StarletteHTTPException
 
 from ..core.errors import InputError
 from ..core.interrupt import Stopped, stop_when
-from . import guard, limits, models, views
+from . import guard, limits, models, views, words
 
 STATIC = Path(__file__).parent / "static"
 _log = logging.getLogger("pendulab.web")
@@ -98,9 +98,12 @@ def overflow(exc: ArithmeticError) -> InputError:
                                                         "(|x| < 1.8e308; smaller lengths, times or g)")
 
 
-def error_body(exc: InputError) -> dict[str, Any]:
+def error_body(exc: InputError, lang: str = "en") -> dict[str, Any]:
+    """A 422's body: the field (the query's name), the value as received, and the allowed range
+    and the one-line message in ``lang`` (:func:`pendulab.web.words.message`)."""
     value = exc.value if isinstance(exc.value, (int, float, str)) or exc.value is None else str(exc.value)
-    return {"error": {"field": exc.name, "value": value, "allowed": exc.allowed, "message": str(exc)}}
+    return {"error": {"field": exc.name, "value": value, "allowed": words.allowed(exc.allowed, lang),
+                      "message": words.message(exc, lang)}}
 
 
 def _encode(body: Any) -> bytes:
@@ -206,7 +209,9 @@ def create_app(allowed_hosts: Iterable[str] = guard.LOCAL_HOSTS) -> FastAPI:
     async def _validation(request: Request, exc: RequestValidationError) -> JSONResponse:
         first = exc.errors()[0] if exc.errors() else {}
         field = str(first.get("loc", ["", "request"])[-1])
-        return JSONResponse(error_body(InputError(field, "(invalid)", first.get("msg", "a valid value"))), status_code=422)
+        lang = words.safe_language(request.query_params)
+        why = first.get("msg", "a valid value") if lang == "en" else "a valid value"  # pydantic's words are English
+        return JSONResponse(error_body(InputError(field, "(invalid)", why), lang), status_code=422)
 
     @app.exception_handler(StarletteHTTPException)
     async def _http(request: Request, exc: StarletteHTTPException) -> JSONResponse:
@@ -232,9 +237,9 @@ def create_app(allowed_hosts: Iterable[str] = guard.LOCAL_HOSTS) -> FastAPI:
                 with stop_when(stop):
                     return Response(_encode(call(params)), media_type="application/json")
             except InputError as exc:
-                return JSONResponse(error_body(exc), status_code=422)
+                return JSONResponse(error_body(exc, words.safe_language(params)), status_code=422)
             except (OverflowError, FloatingPointError) as exc:
-                return JSONResponse(error_body(overflow(exc)), status_code=422)
+                return JSONResponse(error_body(overflow(exc), words.safe_language(params)), status_code=422)
             except Stopped:
                 return Response(status_code=499)  # nobody reads it
 
@@ -245,9 +250,9 @@ def create_app(allowed_hosts: Iterable[str] = guard.LOCAL_HOSTS) -> FastAPI:
         try:
             return JSONResponse(call(_given(query)))
         except InputError as exc:
-            return JSONResponse(error_body(exc), status_code=422)
+            return JSONResponse(error_body(exc, words.safe_language(query)), status_code=422)
         except (OverflowError, FloatingPointError) as exc:
-            return JSONResponse(error_body(overflow(exc)), status_code=422)
+            return JSONResponse(error_body(overflow(exc), words.safe_language(query)), status_code=422)
 
     bad: dict[int | str, dict[str, Any]] = {422: {"model": models.ErrorAnswer, "description": "a bad parameter, named"}}
 

@@ -441,10 +441,13 @@ def config_view(params: Mapping[str, str] | None = None) -> dict[str, Any]:
     from ..core.methods import MAX_TAYLOR_ORDER, menu
 
     lang = words.language(params or {})
+    said = words.catalogue(lang)  # a method's description in the language (the registry's own where it has none)
     return {
-        "methods": [{"name": m.name, "order": m.order, "description": m.description} for m in menu()],
+        "methods": [{"name": m.name, "order": m.order, "description": said.get(f"method.{m.name}", m.description)}
+                    for m in menu()],
         # The family taylor:P of the registry, every order (taylor:1 is Euler's method).
-        "family": [{"name": m.name, "order": m.order, "description": m.description + (" (Euler's method)" if m.order == 1 else "")}
+        "family": [{"name": m.name, "order": m.order,
+                    "description": words.say("method.euler", lang) if m.order == 1 else words.say("method.taylor", lang, order=m.order)}
                    for m in (resolve(f"taylor:{p}") for p in range(1, MAX_TAYLOR_ORDER + 1))],
         "g_presets": parameters.G_PRESETS,
         "limits": {"max_steps": limits.MAX_WORK, "max_points": limits.MAX_POINTS, "plot_points": limits.DEFAULT_PLOT_POINTS},

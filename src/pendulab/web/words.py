@@ -7,10 +7,11 @@ flag reads the same in both languages; numbers are written in the language's for
 from __future__ import annotations
 
 import functools
+import re
 from collections.abc import Mapping
 from typing import Any
 
-from ..core.errors import InputError
+from ..core.errors import InputError, shown_value
 
 #: The page's languages, the first the default.
 LANGUAGES = ("en", "pt")
@@ -42,3 +43,44 @@ def number(x: float, spec: str, lang: str) -> str:
 def say(key: str, lang: str, **values: Any) -> str:
     """The entry ``web.<key>`` of ``lang``, its ``{fields}`` filled with ``values`` (text as given)."""
     return catalogue(lang)[key].format(**values)
+
+
+def allowed(text: str, lang: str) -> str:
+    """An :class:`~pendulab.core.errors.InputError`'s allowed range (or its value's
+    ``(missing)``) in ``lang``: each phrase of the catalogue's ``web.allowed.`` entries, the
+    longest first, replaced by its translation, and a decimal comma in Portuguese. English
+    text is returned as it is."""
+    if lang == LANGUAGES[0]:
+        return text
+    for en, there in _phrases(lang):
+        text = text.replace(en, there)
+    return re.sub(r"(?<=\d)\.(?=\d)", ",", text) if lang == "pt" else text
+
+
+@functools.cache
+def _phrases(lang: str) -> tuple[tuple[str, str], ...]:
+    en, there = catalogue(LANGUAGES[0]), catalogue(lang)
+    pairs = [(en[k], there[k]) for k in en if k.startswith("allowed.")]
+    return tuple(sorted(pairs, key=lambda p: -len(p[0])))
+
+
+def message(exc: InputError, lang: str) -> str:
+    """``exc``'s one line in ``lang``: ``length = 0 não é permitido: deve ser ...`` in
+    Portuguese (the field by its word, ``field.<name>``, where the catalogue has one); in
+    English ``str(exc)`` itself."""
+    if lang == LANGUAGES[0]:
+        return str(exc)
+    name = catalogue(lang).get(f"field.{exc.name}", exc.name)
+    where = name if exc.index is None else f"{name}[{', '.join(map(str, exc.index))}]"
+    value = shown_value(exc.value)  # as typed; only a stand-in such as (missing) is translated
+    value = dict(_phrases(lang)).get(value, value)
+    return say("error.not-allowed", lang, field=where, value=value, allowed=allowed(exc.allowed, lang))
+
+
+def safe_language(params: Mapping[str, object]) -> str:
+    """:func:`language` of a query, or the default where ``lang`` itself is bad (its own
+    error is then written in the default language)."""
+    try:
+        return language({"lang": str(params.get("lang") or "")})
+    except InputError:
+        return LANGUAGES[0]

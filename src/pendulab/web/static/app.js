@@ -428,7 +428,23 @@ function plotConfig() {
     displaylogo: false, showSendToCloud: false, showEditInChartStudio: false, showLink: false,
     responsive: true, scrollZoom: false, displayModeBar: TOUCH || view.plotkeys ? true : "hover",
     modeBarButtonsToRemove: ["lasso2d", "select2d", "sendDataToCloud", "editInChartStudio"],
+    locale: lang, locales: { [lang]: { dictionary: plotlyWords() } },
   };
+}
+
+/** Plotly's own words (its mode bar's buttons, its notes), from the catalogue's web.plotly. entries. */
+const PLOTLY_WORDS = {
+  "Autoscale": "autoscale", "Box Select": "box-select", "Lasso Select": "lasso-select",
+  "Compare data on hover": "compare", "Show closest data on hover": "closest",
+  "Double-click on legend to isolate one trace": "isolate", "Double-click to zoom back out": "zoom-back",
+  "Download plot as a PNG": "png", "Download plot as a png": "png", "Download plot": "download", "Pan": "pan",
+  "Reset axes": "reset-axes", "Reset view": "reset-view", "Reset": "reset", "Toggle Spike Lines": "spikes",
+  "Zoom": "zoom", "Zoom in": "zoom-in", "Zoom out": "zoom-out",
+  "Taking snapshot - this may take a few seconds": "snapshot", "Snapshot succeeded": "snapshot-done",
+  "Sorry, there was a problem downloading your snapshot!": "snapshot-failed",
+};
+function plotlyWords() {
+  return Object.fromEntries(Object.entries(PLOTLY_WORDS).map(([k, v]) => [k, word("plotly." + v)]));
 }
 
 // The mode bar (at the top right) shares the top row with the title, which starts at the
