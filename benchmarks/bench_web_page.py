@@ -153,6 +153,11 @@ def page_rows(cold: int = COLD, typed: int = TYPED) -> list[dict]:
     ]
 
 
+def _shown(x: float) -> str:
+    """A measurement as the table shows it: whole from 100 up (1042 ms, not 1.04e+03), else 3 digits."""
+    return f"{x:.0f}" if abs(x) >= 100 else f"{x:.3g}"
+
+
 def table(m: dict, load: tuple[float, float]) -> str:
     """The measurements as a Markdown table, medians and maxima against the aims (the shape
     ``--write`` puts into docs/performance.md), and a line saying where they were taken."""
@@ -170,7 +175,7 @@ def table(m: dict, load: tuple[float, float]) -> str:
     lines = ["| measure | median | max | aim | median / aim |", "|---|---:|---:|---:|---:|"]
     for name, values, aim in rows:
         mid = med(values)
-        lines.append(f"| {name} | {mid:.3g} | {max(values):.3g} | {'' if aim is None else f'{aim:.4g}'} | "
+        lines.append(f"| {name} | {_shown(mid)} | {_shown(max(values))} | {'' if aim is None else f'{aim:.4g}'} | "
                      f"{'' if aim is None else f'{mid / aim:.2f}'} |")
     lines.append(f"| animation frames a second | {m['fps']:.3g} | | {AIMS['fps']:.3g} | {m['fps'] / AIMS['fps']:.2f} |")
     commit = subprocess.run(["git", "rev-parse", "--short", "HEAD"], cwd=ROOT, capture_output=True, text=True).stdout.strip()

@@ -157,11 +157,16 @@ def test_the_word_check_finds_english():
     assert _english_left("comprimento = 0 não é permitido: deve ser um número finito > 0 (m), como 3,5 ou 75cm") == []
 
 
+#: The Portuguese page at every size, and its flags (RK4 at h = 0.5 s) and a comparison on a laptop.
+PT_CASES = [pytest.param(w, h, "", id=f"default-{w}x{h}") for w, h in VIEWPORTS] + [
+    pytest.param(1400, 900, "&" + RK4_HALF, id="rk4-flagged"),
+    pytest.param(1400, 900, "&second=1&method2=verlet&length2=1&amplitude2=80", id="compare")]
+
+
 @pytest.mark.slow
-@pytest.mark.parametrize("query", ["", "&" + RK4_HALF, "&second=1&method2=verlet&length2=1&amplitude2=80"],
-                         ids=["default", "rk4-flagged", "compare"])
-def test_the_portuguese_page_has_no_english_word_left(browser, server, query):
-    context, pg = _open(browser, server, "lang=pt" + query, 1400, 900)
+@pytest.mark.parametrize("width, height, query", PT_CASES)
+def test_the_portuguese_page_has_no_english_word_left(browser, server, width, height, query):
+    context, pg = _open(browser, server, "lang=pt" + query, width, height)
     try:
         if "rk4" in query:  # the flags, in Portuguese
             pg.wait_for_function("document.querySelector('#flags p[data-kind=energy-decay]')", timeout=30_000)
