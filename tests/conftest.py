@@ -11,7 +11,7 @@ from pendulab.cli import main
 #: runs the others (``-m "not slow"``) and ruff and mypy directly; ``make test`` runs all.
 SLOW_FILES = frozenset({
     "test_boundary_cli.py", "test_docs.py", "test_lint.py", "test_notebook.py", "test_packaging.py",
-    "test_report.py", "test_web_e2e.py", "test_web_load.py", "test_web_server.py",
+    "test_report.py", "test_web_e2e.py", "test_web_lab_page.py", "test_web_load.py", "test_web_server.py",
 })
 
 
