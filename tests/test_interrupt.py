@@ -449,6 +449,7 @@ def test_ctrl_c_while_serve_imports_on_a_cold_cache_ends_it_with_its_line(tmp_pa
     assert early >= 3, "too few tries landed before the banner to test the imports"
 
 
+@pytest.mark.slow
 def test_a_daemon_thread_still_at_work_ends_the_process_without_pythons_shutdown():
     """After the command, a daemon thread still running (serve's warm-up compiling a kernel
     when Ctrl+C stopped the server) ends the process at once with the command's status and
