@@ -4,13 +4,25 @@ validate against that published schema (jsonschema, not the server's own models)
 from __future__ import annotations
 
 import re
+import sys
 
 import pytest
 from fastapi.testclient import TestClient
-from jsonschema import Draft202012Validator
 
 from pendulab.web import create_app
 from pendulab.web.app import STATIC
+
+# jsonschema's optional "iri" format checker imports rfc3987_syntax, which builds a grammar for
+# seconds (each test worker, at collection); these validators check no formats: kept out.
+_IRI = sys.modules.get("rfc3987_syntax")
+sys.modules["rfc3987_syntax"] = None  # its import is then an ImportError, which jsonschema expects
+try:
+    from jsonschema import Draft202012Validator
+finally:
+    if _IRI is None:
+        del sys.modules["rfc3987_syntax"]
+    else:
+        sys.modules["rfc3987_syntax"] = _IRI
 
 
 @pytest.fixture(scope="module")
