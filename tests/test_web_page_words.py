@@ -132,3 +132,9 @@ def test_the_methods_are_described_in_portuguese(client):
     said = {m["name"]: m["description"] for m in body["methods"] + body["family"]}
     assert said["rk4"] == "Runge-Kutta clássico, ordem 4" and said["taylor:1"].endswith("(método de Euler)")
     assert said["taylor:7"] == "método de Taylor de ordem 7"
+
+
+def test_a_bad_language_is_shown_on_one_line(client):
+    # Hypothesis (test_boundary_web) found lang = "a\nb" echoed with its newline.
+    err = client.get("/api/config", params={"lang": "a\nb"}).json()["error"]
+    assert err["message"] == "lang = 'a\\nb' is not allowed: must be en or pt" and err["field"] == "lang"

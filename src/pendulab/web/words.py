@@ -11,7 +11,7 @@ import re
 from collections.abc import Mapping
 from typing import Any
 
-from ..core.errors import InputError, shown_value
+from ..core.errors import InputError, shown, shown_value
 
 #: The page's languages, the first the default.
 LANGUAGES = ("en", "pt")
@@ -30,7 +30,7 @@ def language(params: Mapping[str, str]) -> str:
     """``lang`` of a query: ``en`` (the default) or ``pt``."""
     lang = str(params.get("lang") or LANGUAGES[0]).strip().lower()
     if lang not in LANGUAGES:
-        raise InputError("lang", lang, "en or pt")
+        raise InputError("lang", shown(lang), "en or pt")  # quoted when unprintable: one line
     return lang
 
 
