@@ -360,6 +360,7 @@ def test_sighup_during_the_key_keeps_the_old_pair(tmp_path):
         assert sorted(p.name for p in tmp_path.iterdir()) == ["groups.txt", "key-class.csv", "key.csv"]
 
 
+@pytest.mark.slow  # a pendulab process (seconds)
 def test_a_swallowed_signal_still_ends_the_command_before_its_output(tmp_path):
     """A SIGTERM whose ``Terminated`` some code swallowed (an ``except BaseException`` on the
     way, as in a callback): the output is not committed and the status is 143."""
@@ -530,15 +531,30 @@ def test_the_phase_portrait_cannot_overwrite_figure_1(cli, tmp_path):
 # --- every environment -------------------------------------------------------------------------------
 
 
-@pytest.mark.parametrize(("name", "value"), [("NUMBA_NUM_THREADS", "0"), ("NUMBA_NUM_THREADS", "-3"),
-                                             ("NUMBA_NUM_THREADS", "lots"), ("NUMBA_OPT", "9")])
+ODD_NUMBA = [("NUMBA_NUM_THREADS", "0"), ("NUMBA_NUM_THREADS", "-3"), ("NUMBA_NUM_THREADS", "lots"), ("NUMBA_OPT", "9")]
+
+
+def _odd_numba_note(name, value):
+    return (f"pendulab: note: {name}={value} is not allowed "
+            f"({'a whole number >= 1' if name == 'NUMBA_NUM_THREADS' else '0, 1, 2, 3 or max'}): "
+            "ignored, numba's default is used")
+
+
+@pytest.mark.parametrize(("name", "value"), ODD_NUMBA)
+def test_an_odd_numba_setting_is_dropped_with_its_note(name, value):
+    """In-process, each value: one note, and the setting gone before numba's import reads it."""
+    from pendulab.core.environ import odd_numba_settings
+
+    env = {name: value, "HOME": "/x"}
+    assert odd_numba_settings(env) == [_odd_numba_note(name, value)] and env == {"HOME": "/x"}
+
+
+@pytest.mark.slow  # a pendulab process each (seconds)
+@pytest.mark.parametrize(("name", "value"), ODD_NUMBA)
 def test_odd_numba_settings_are_one_note_and_the_work_done(name, value):
     res = pendulab("sweep", "--amplitude", "0.1:1:4", "--step", "1e-2", env={name: value})
     assert res.returncode == 0, res.stderr.decode()
-    assert res.stderr.decode().splitlines() == [
-        f"pendulab: note: {name}={value} is not allowed "
-        f"({'a whole number >= 1' if name == 'NUMBA_NUM_THREADS' else '0, 1, 2, 3 or max'}): "
-        "ignored, numba's default is used"]
+    assert res.stderr.decode().splitlines() == [_odd_numba_note(name, value)]
     assert res.stdout
 
 
