@@ -15,7 +15,7 @@ import numpy as np
 import pytest
 from scipy.integrate import solve_ivp
 
-from _browser import launched, record_errors
+from _browser import VIEWPORTS, launched, record_errors
 from reference import G, ellipk_period
 from served import serve_in_child
 
@@ -35,8 +35,8 @@ def browser():
         yield b
 
 
-def _open(browser, server, url, throttle=None):
-    context = browser.new_context(viewport={"width": 1400, "height": 1000})
+def _open(browser, server, url, throttle=None, width=1400, height=1000):
+    context = browser.new_context(viewport={"width": width, "height": height})
     pg = record_errors(context.new_page())
     if throttle:  # a slow machine: Chromium's CPU throttling (the devtools protocol)
         context.new_cdp_session(pg).send("Emulation.setCPUThrottlingRate", {"rate": throttle})
@@ -52,8 +52,10 @@ def _gate(pg, which, timeout=30_000, when=False):
     return (float(got[0]), float(got[1])) if when else float(got[0])
 
 
-def test_both_photogates_read_the_exact_periods_at_4x_on_a_throttled_cpu(browser, server):
-    context, pg = _open(browser, server, TWO, throttle=6)
+@pytest.mark.slow
+@pytest.mark.parametrize("width, height", VIEWPORTS)
+def test_both_photogates_read_the_exact_periods_at_4x_on_a_throttled_cpu(browser, server, width, height):
+    context, pg = _open(browser, server, TWO, throttle=6, width=width, height=height)
     try:
         t1, t2 = ellipk_period(1, math.radians(30)), ellipk_period(1, math.radians(80))
         readings = []
