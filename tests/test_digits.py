@@ -84,10 +84,13 @@ def test_with_error_prints_only_right_digits(x, error):
     """Every value within ``error`` of ``x`` (the truth may be any of them) is within one
     unit of the printed number's last place, and one more digit would not be."""
     text = digits.with_error(x, error)
-    if value(text) == 0:  # the error swamps x: a presenter marks it as rounding noise
+    if text.startswith("<= "):  # the error swamps x: a bound of the true value's size
         q = digits.place(error)
         assert abs(Fraction(x)) <= Fraction(1, 2) * Fraction(10) ** q
-        assert q > 0 or text == "0." + "0" * -q if q < 0 else text == "0"
+        bound = value(text[3:])
+        size = abs(Fraction(x)) + Fraction(error)  # every truth within error of x is at most this
+        assert size <= bound < 2 * size  # rounded up to one significant digit: at most doubled
+        assert len(text[3:].split("e")[0].replace(".", "").strip("0")) == 1, text
         return
     q = last_place(text)
     unit = Fraction(10) ** q
@@ -132,3 +135,17 @@ def test_the_docs_table_is_the_policy():
     text = (ROOT / "docs" / "report.md").read_text(encoding="utf-8")
     rows = re.findall(r"^\| `([a-z0-9_.]+)` \| (\w+) \| (\d+) \|", text, flags=re.M)
     assert {name: digits.Form(kind, int(n)) for name, kind, n in rows} == digits.POLICY
+
+
+def test_a_value_its_error_swamps_prints_as_a_bound():
+    """Issue 32: f(x_4) = 2.2e-16 with an error 2 u S = 7.3e-16, the last step -9.0e-15 with two
+    iterates' delta 5.1e-15, q_2 = 0.336 with a 28 % rounding error: not a bare 0 at the error's
+    place but at most |x| + error, rounded up (the report's Typst: a true ≤)."""
+    from pendulab.report.markup import typst
+
+    assert digits.with_error(2.2e-16, 7.3e-16, 3) == "<= 1e-15"
+    assert digits.with_error(-9.0e-15, 5.1e-15, 3) == "<= 2e-14"
+    assert digits.with_error(0.336, 0.28 * 0.336) == "<= 0.5"
+    assert digits.with_error(0.0, 0.0) == "0"  # exactly zero, and known so
+    assert digits.with_error(1.2e-8, 5.1e-15, 3) == "1.20e-8"  # a value above its error: digits
+    assert typst("<= 2e-14") == "≤ 2 × 10#super[−14]" and typst("<= 0.5") == "≤ 0.5"

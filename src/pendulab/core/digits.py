@@ -18,7 +18,7 @@ import math
 from dataclasses import dataclass
 from decimal import ROUND_CEILING, ROUND_HALF_EVEN, Context, Decimal
 
-__all__ = ["FORMS", "ORDER_ONE", "POLICY", "Form", "bound", "fixed", "place", "rounding_noise", "scientific",
+__all__ = ["FORMS", "ORDER_ONE", "POLICY", "Form", "bound", "fixed", "noise_bound", "place", "rounding_noise", "scientific",
            "shown", "significant", "split", "with_error"]
 
 #: The kinds of form: ``fixed`` (``digits`` decimals, the tables' columns), ``significant``
@@ -30,7 +30,7 @@ FORMS = ("fixed", "significant", "scientific", "bound", "error", "integer")
 #: Plain decimals for magnitudes in [10^-3, 10^6); beyond, scientific notation.
 PLAIN = (Decimal("1e-3"), Decimal("1e6"))
 #: The scientific forms (``scientific``, a ``bound`` asked for as scientific) print an
-#: order-1 value, |x| in [0.1, 1000), as a plain decimal with the same significant digits
+#: order-1 value, ``|x|`` in [0.1, 1000), as a plain decimal with the same significant digits
 #: (``0.880``, not ``8.80e-1``); beyond, a power of ten.
 ORDER_ONE = (Decimal("0.1"), Decimal("1e3"))
 #: Room for every digit of a double's exact decimal value (at most 767 significant digits).
@@ -188,16 +188,29 @@ def place(error: float) -> int:
 def with_error(x: float, error: float, most: int = 17) -> str:
     """``x`` with the digits its absolute ``error`` allows (at most ``most`` significant ones,
     at least one): each printed digit is right, ``|printed - x_true| <= 10^q`` for the last
-    place ``10^q``. A value smaller than its error prints as ``0`` at the error's place."""
+    place ``10^q``. A value that would print as ``0`` at the error's place (the error swamps
+    it) prints as a bound instead, ``<= 2e-15``: ``|x| + error`` rounded up to one
+    significant digit, at least ``|x_true|`` (:func:`noise_bound`)."""
     d = _decimal(x)
     q = place(error)
     if d != 0:
         q = max(q, d.adjusted() - most + 1)
     r = _round(d, q)
     if r == 0:
-        return _text(Decimal(0), q)  # |x| <= 0.5 10^q: the error swamps it (rounding_noise)
+        return noise_bound(x, error)  # |x| <= 0.5 10^q: the error swamps it (rounding_noise)
     # no digit below 10^q; tens and beyond as a power of ten (120 would claim the units)
     return _text(r, q, sci=True if q > 0 else None)
+
+
+def noise_bound(x: float, error: float) -> str:
+    """``<= b``: ``b`` the exact ``|x| + |error|`` rounded *up* to one significant digit, in
+    the form of :func:`bound` with ``sci=True`` (``<= 2e-15``; ``<= 0.3`` order 1), so that
+    ``|x_true| <= |x| + error <= b``: a value its error swamps, printed as the size it is under."""
+    s = _EXACT.add(abs(_decimal(x)), abs(_decimal(error)))
+    if s == 0:
+        return "0"
+    r, q = _significant_place(s, 1, ROUND_CEILING)
+    return "<= " + _text(r, q, not _order_one(r, q))
 
 
 def rounding_noise(x: float, error: float) -> bool:

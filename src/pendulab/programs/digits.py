@@ -9,7 +9,8 @@ EXACT = Context(prec=800)  # every digit of a double's exact decimal value
 
 def right(x, error, most=17):
     """x to the place 10^q its error allows, at most `most` digits (half to even on the
-    exact value): plain in [1e-3, 1e6) if q <= 0, else m.mme-k; 0 if |x| <= 0.5 10^q."""
+    exact value): plain in [1e-3, 1e6) if q <= 0, else m.mme-k; if |x| <= 0.5 10^q (the
+    error swamps it), <= |x| + error rounded up: at least the true |x|."""
     e = abs(Decimal(error))
     q = e.adjusted() + 2  # e < 10^(q-1), so e <= 0.5 10^q
     while Decimal(5).scaleb(q - 2) >= e:  # and one place further still holds
@@ -18,12 +19,15 @@ def right(x, error, most=17):
         q = max(q, Decimal(x).adjusted() - most + 1)
     d = Decimal(x).quantize(Decimal(1).scaleb(q), context=EXACT)
     if d == 0:
-        return "0" if q >= 0 else "0." + "0" * -q
+        return "<= " + sci_up(EXACT.add(abs(Decimal(x)), e), 1)
     if Decimal("1e-3") <= abs(d) < Decimal("1e6") and q <= 0:
         return f"{d:f}"
     k = d.adjusted()
     mant = d.scaleb(-k, EXACT).quantize(Decimal(1).scaleb(min(q - k, 0)), context=EXACT)
     return f"{mant:f}e{k}"
+
+def eq(text):  # "= 1.2e-8", or a bound as right prints it: "<= 2e-15"
+    return text if text[0] == "<" else "= " + text
 
 def sci(x, n, plain=(0.1, 1000)):
     """x to n significant digits: plain for |x| in [0.1, 1000), else m.mme-k."""

@@ -5,7 +5,7 @@ f'(alpha) = (2 pi/p) sin(alpha)/8 and f''(alpha) = (2 pi/p) cos(alpha)/8.
 """
 import math
 
-from digits import right, sci, sci_up
+from digits import eq, right, sci, sci_up
 
 G, L, TARGET = 9.80665, 0.5, 1.5
 T0 = 2 * math.pi / math.sqrt(G / L)  # 2 pi/p, the small-angle period
@@ -72,14 +72,14 @@ if __name__ == "__main__":
     f_error = 2 * U * (1.25 * T0 + TARGET)
     diffs = [right(x1 - x0, 2 * delta, 3) for x0, x1 in zip(xs, xs[1:])]
     for k, x in enumerate(xs):
-        step = f", x_{k + 1} - x_{k} = {diffs[k]}" if k < len(diffs) else ""
+        step = f", x_{k + 1} - x_{k} {eq(diffs[k])}" if k < len(diffs) else ""
         print(f"     x_{k} = {right(x, delta)} rad = {right(math.degrees(x), deg)}",
-              f"degrees, f = {right(f(x), f_error, 3)}{step}")
+              f"degrees, f {eq(right(f(x), f_error, 3))}{step}")
     c = abs(d2f(xs[-1]) / (2 * df(xs[-1])))  # the limit of q_k, |f''(z) / (2 f'(z))|
     last = abs(xs[-1] - xs[-2])
     # 2(b): quadratic, so |z - x_N| ~ C |x_N - x_(N-1)|^2, plus the rounding level
     print(f"2(b) f'(x_N) = {df(xs[-1]):.6g},",
-          f"|x_N - x_(N-1)| = {right(last, 2 * delta, 3)};",
+          f"|x_N - x_(N-1)| {eq(right(last, 2 * delta, 3))};",
           f"estimate |alpha - x_N| ~ {sci(c * last**2 + delta, 2)},",
           f"delta = {sci(delta, 2)}")
     closed = 2 * math.asin(2 * math.sqrt(TARGET / T0 - 1))  # (9) solved by hand

@@ -13,9 +13,10 @@ def _sup(exp: int) -> str:
 
 
 def typst(text: str) -> str:
-    """Plain text of :mod:`pendulab.core.digits` (``-1.2e-5``) as Typst (``−1.2 × 10^−5``)."""
+    """Plain text of :mod:`pendulab.core.digits` (``-1.2e-5``, ``<= 2e-15``) as Typst
+    (``−1.2 × 10^−5``, ``≤ 2 × 10^−15``)."""
     mant, exp = digits.split(text)
-    mant = mant.replace("-", "−")
+    mant = mant.replace("<=", "≤").replace("-", "−")
     return mant if exp is None else f"{mant} × {_sup(exp)}"
 
 
@@ -47,6 +48,12 @@ def sci_up(x: float, n: int = 3) -> str:
 def err(x: float, error: float, most: int = 17) -> str:
     """``x`` with only the digits its ``error`` allows (:func:`pendulab.core.digits.with_error`)."""
     return typst(digits.with_error(x, error, most)) if _finite(x) else "—"
+
+
+def eq(text: str) -> str:
+    """``= text`` after a symbol, or ``text`` itself where it is a bound (``≤ 2 × 10^−15``, as
+    :func:`err` prints a value its error swamps): ``|x_N - x_(N-1)| = 1.2 × 10^−8``."""
+    return text if text.startswith("≤") else "= " + text
 
 
 def shown(quantity: str, x: float, error: float | None = None) -> str:

@@ -16,7 +16,7 @@ from decimal import ROUND_FLOOR, Decimal
 from typing import Any
 
 from .document import Doc
-from .markup import err, fixed, integer, num, sci, sci_beside, sci_up, shown, up
+from .markup import eq, err, fixed, integer, num, sci, sci_beside, sci_up, shown, up
 
 
 def programs() -> dict[str, Any]:
@@ -121,7 +121,7 @@ def problem2(doc: Doc, students: Sequence[int]) -> None:
         "p2.stepa": num(steps[0], 6), "p2.stepb": num(steps[1], 6), "p2.width": num(b - a, 6),
         "p2.x0": err(x0, delta), "p2.x0deg": err(math.degrees(x0), deg),
         "p2.alpha": err(xs[-1], delta), "p2.deg": err(math.degrees(xs[-1]), deg),
-        "p2.dfz": num(p2.df(xs[-1]), 6), "p2.last": err(last, 2 * delta, 3),
+        "p2.dfz": num(p2.df(xs[-1]), 6), "p2.last": eq(err(last, 2 * delta, 3)),
         "p2.errest": sci(const * last**2 + delta, 2), "p2.delta": sci(delta, 2),
         "p2.closed": sci_up(abs(closed - xs[-1]), 2) if closed != xs[-1] else "0",
         "p2.qtol": f"{p2.Q_TOL:.0%}",
