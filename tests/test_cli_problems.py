@@ -1,5 +1,6 @@
 """CLI: gravity, newton, fit, quadrature; every bad input gets one line and exit 2."""
 import math
+import re
 import subprocess
 import sys
 
@@ -8,7 +9,7 @@ import pytest
 from conftest import assert_one_line_error
 from pendulab.jobs.problems import problem1, problem2
 from pendulab.numerics.period import FIXED_ITERATIONS_ULPS, agm_period
-from reference import G, reference_period, reference_period_kp
+from reference import G_TEXT, G, reference_period, reference_period_kp
 
 
 def test_gravity_json_and_units(cli):
@@ -51,6 +52,79 @@ def test_newton_json(cli):
     assert (f"  [ok] Newton step from b stays in [a, b]: |f(b)/f'(b)| = {from_b.values['step']:.6e} <= "
             f"b - a = {from_b.values['width']:.6e}") in text
     assert [c["name"] for c in data["interval_conditions"]] == [c.name for c in lib.interval.conditions]
+
+
+def _newton_mp(length, target, x0, steps):
+    """Newton's iterates of (9) in exact arithmetic (50 digits) from the double ``x0``, the
+    equation from the inputs as written (``l``, the target, ``g = 9.80665`` decimals)."""
+    import mpmath
+
+    with mpmath.workdps(50):
+        t0 = 2 * mpmath.pi / mpmath.sqrt(mpmath.mpf(G_TEXT) / mpmath.mpf(length))
+        f = lambda a: t0 * (1 + mpmath.sin(a / 2) ** 2 / 4) - mpmath.mpf(target)  # noqa: E731
+        df = lambda a: t0 * mpmath.sin(a) / 8  # noqa: E731
+        xs = [mpmath.mpf(x0)]
+        for _ in range(steps):
+            xs.append(xs[-1] - f(xs[-1]) / df(xs[-1]))
+        return xs, f
+
+
+def _right(text, true):
+    """Within one unit of the last printed digit of ``true``; ``<= b`` (a value its rounding
+    swamps, one significant digit): a true bound of its size, ``|true| <= b``."""
+    from decimal import Decimal
+
+    import mpmath
+
+    with mpmath.workdps(50):
+        if text.startswith("<= "):
+            b = Decimal(text[3:])
+            assert len(b.normalize().as_tuple().digits) == 1, text
+            assert abs(true) <= mpmath.mpf(text[3:]), (text, mpmath.nstr(true, 20))
+            return
+        unit = mpmath.mpf(10) ** Decimal(text).as_tuple().exponent
+        assert abs(mpmath.mpf(text) - true) <= unit, (text, mpmath.nstr(true, 20))
+
+
+@pytest.mark.parametrize("args", [(), ("-l", "2", "--target", "3", "--x0", "80deg"), ("-l", "1", "--target", "2.1")])
+def test_newton_prints_only_right_digits(cli, args):
+    """Issue 32: every number of ``pendulab newton``'s table and result lines within one unit of
+    its last printed digit of mpmath's (exact Newton from the same x_0, f at the printed
+    iterate's double, q_k of the exact iterates, the constant at the exact root), or, where
+    rounding swamps it (f(x_k) near the root, q_k after k_max), a true bound ``<= b``;
+    ``--json`` keeps every double."""
+    import mpmath
+
+    data = cli("newton", *args, "--json").json
+    res = cli("newton", *args)
+    assert res.code == 0, res.err
+    lines = res.out.splitlines()
+    head = next(i for i, line in enumerate(lines) if line.split()[:2] == ["k", "x_k"])
+    n = len(data["iterates"])
+    rows = [re.findall(r"<= \S+|\S+", line.split("<-")[0]) for line in lines[head + 1:head + 1 + n]]
+    xs, f = _newton_mp(data["length"], data["target"], data["x0"], n - 1)
+    with mpmath.workdps(50):
+        d = [abs(b - a) for a, b in zip(xs, xs[1:])]
+        q = [d[k + 1] / d[k] ** 2 for k in range(n - 2)]
+        for k, row in enumerate(rows):
+            assert row[0] == str(k)
+            _right(row[1], xs[k])
+            _right(row[2], f(mpmath.mpf(data["iterates"][k])))  # f at the double the run holds
+            if k < n - 2:
+                _right(row[3], q[k])
+                assert mpmath.mpf(row[4]) >= data["q_rounding"][k]  # a bound, rounded up
+        root = mpmath.findroot(f, xs[-1])
+        text = "\n".join(lines[head + 1 + n:])
+        constant = re.search(r"\| = ([0-9.e-]+); q_kmax = ([0-9.e-]+)", text)
+        _right(constant.group(1), abs(mpmath.cot(root)) / 2)
+        _right(constant.group(2), q[data["k_max"]])
+        alpha = re.search(r"alpha = ([0-9.]+) rad = ([0-9.]+) deg  \(error estimate ([0-9.e-]+) rad\)", text)
+        _right(alpha.group(1), root)
+        _right(alpha.group(2), root * 180 / mpmath.pi)
+        # an estimate of |z - x_N|: C |x_N - x_(N-1)|^2 + delta, to its 2 digits
+        _right(alpha.group(3), abs(mpmath.cot(root)) / 2 * d[-1] ** 2 + mpmath.mpf(data["rounding_level"]))
+    assert any(cell.startswith("<= ") for row in rows for cell in row[2:3])  # f(x_N): rounding
+    assert "0.336133" not in res.out and len(repr(data["q"][-1])) > len(rows[-3][3])  # --json: every digit
 
 
 @pytest.mark.slow

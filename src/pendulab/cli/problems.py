@@ -1,13 +1,15 @@
 """Commands of problems 1, 2, 4, 5: ``gravity``, ``newton``, ``fit``, ``quadrature``."""
 from __future__ import annotations
 
+import math
 from fractions import Fraction
 
 import click
 
 from ..core import cases, inputs
+from ..core.digits import shown
 from ..core.errors import InputError
-from ..numerics.newton import Condition
+from ..numerics.newton import Condition, U
 from ..numerics.period import FIXED_ITERATIONS_ULPS
 from ..report.words import sentence
 from ._common import (
@@ -18,7 +20,6 @@ from ._common import (
     Parsed,
     check_plot_path,
     emit_json,
-    fmt,
     g_option,
     json_option,
 )
@@ -117,22 +118,38 @@ def newton(length, target, x0, g, as_json):
         return
     e = r.equation
     click.echo(f"f(alpha) = (2 pi/p)(1 + sin^2(alpha/2)/4) - {e.target!r},  p = sqrt(g/l) = {e.p!r}")
+    # The report's digits (pendulab.core.digits): x_k to the rounding level delta, f(x_k) to the
+    # rounding of its terms (2 u S), q_k to its rounding error; a value its error swamps as
+    # "<= bound". --json keeps every double.
+    delta, f_error = run.rounding_level, 2 * U * e.f_scale
     a, b = r.interval_deg
     click.echo(f"interval [a, b] = [{a:g}, {b:g}] deg = [{chk.a!r}, {chk.b!r}] rad:")
     for c in chk.conditions:
         click.echo(f"  [{'ok' if c.holds else 'FAILS'}] {condition_text(c)}")
     click.echo(f"x0 = {r.x0!r} ({x0_rule}); {sentence('p2.criterion.' + run.criterion, tol=run.tol)}")
-    click.echo(f"{'k':>3} {'x_k (rad)':>22} {'f(x_k)':>12} {'q_k':>12} {'rounding of q_k':>16}")
+    click.echo(f"{'k':>3} {'x_k (rad)':>22} {'f(x_k)':>12} {'q_k':>18} {'rounding of q_k':>16}")
     for k, x in enumerate(run.iterates):
-        q = run.q[k] if k < len(run.q) else None
-        rho = f"{run.q_rounding[k]:.1e}" if k < len(run.q_rounding) else ""
-        qs = f"{q:.6g}" if q is not None else ""
+        rho = shown("p2.relative_rounding", run.q_rounding[k]) if k < len(run.q_rounding) else ""
+        qs = _quotient(run.q[k], run.q_rounding[k]) if k < len(run.q) else ""
         mark = "  <- k_max" if k == run.k_max else ""
-        click.echo(f"{k:>3} {fmt(x, 17):>22} {run.values[k]:>12.3e} {qs:>12} {rho:>16}{mark}")
+        click.echo(f"{k:>3} {shown('p2.iterate', x, delta):>22} {shown('p2.residual', run.values[k], f_error):>12} "
+                   f"{qs:>18} {rho:>16}{mark}")
     click.echo(f"k_max = {run.k_max}: the last q_k whose rounding error bound is <= 1%")
-    q_kmax = f"{run.q_kmax:.6g}" if run.q_kmax is not None else "none (no q_k free of rounding)"
-    click.echo(f"asymptotic constant |f''(z)/(2 f'(z))| = {run.asymptotic_constant:.6g}; q_kmax = {q_kmax}")
-    click.echo(f"alpha = {r.alpha!r} rad = {r.alpha_deg!r} deg  (error estimate {run.error_estimate:.1e} rad)")
+    q_kmax = (_quotient(run.q_kmax, run.q_rounding[run.k_max]) if run.k_max is not None
+              else "none (no q_k free of rounding)")
+    constant = "—" if run.asymptotic_constant is None else shown("p2.constant", run.asymptotic_constant)
+    click.echo(f"asymptotic constant |f''(z)/(2 f'(z))| = {constant}; q_kmax = {q_kmax}")
+    # degrees: delta converted, plus the conversion's own rounding
+    deg = math.degrees(delta) + 2 * U * math.degrees(max(abs(r.x0), abs(r.alpha)))
+    click.echo(f"alpha = {shown('p2.iterate', r.alpha, delta)} rad = {shown('p2.iterate', r.alpha_deg, deg)} deg  "
+               f"(error estimate {shown('p2.error_estimate', run.error_estimate)} rad)")
+
+
+def _quotient(q: float | None, rho: float) -> str:
+    """``q_k`` with the digits its relative rounding error ``rho`` leaves (``<= 0.5`` where none)."""
+    if q is None or not math.isfinite(rho):
+        return "—"
+    return shown("p2.quotient", q, rho * q)
 
 
 def condition_text(c: Condition) -> str:
