@@ -250,8 +250,9 @@ class PeriodCurveAnswer(_Model):
 class ErrorDetail(_Model):
     field: str
     value: int | float | str | None = Field(description="as typed")
-    allowed: str
-    message: str = Field(description="one line: '<field> = <value> is not allowed: must be <allowed>'")
+    allowed: str = Field(description="the allowed range, in the request's lang")
+    message: str = Field(description="one line in the request's lang: '<field> = <value> is not allowed: must be <allowed>' "
+                                     "(pt: '<the field's word> = <value> não é permitido: deve ser <allowed>')")
 
 
 class ErrorAnswer(_Model):
