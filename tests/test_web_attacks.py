@@ -126,8 +126,9 @@ def test_connections_per_client_are_capped_and_the_oldest_waiting_one_goes():
         waiting = [half_request(port) for _ in range(10)]
         r = httpx.get(f"http://127.0.0.1:{port}/api/config", timeout=10)
         assert r.status_code == 200
-        # the server closes at least the 6 oldest waiting ones within 1 s (all watched at once)
-        open_ones, deadline = list(waiting), time.monotonic() + 1.0
+        # the server closes at least the 6 oldest waiting ones (all watched at once; the
+        # 10 s bound is a hang guard: they close as the new connections come)
+        open_ones, deadline = list(waiting), time.monotonic() + 10.0
         while len(open_ones) > 4 and time.monotonic() < deadline:
             readable, _, _ = select.select(open_ones, [], [], max(0.0, deadline - time.monotonic()))
             open_ones = [s for s in open_ones if s not in readable or not closed_by_server(s, 0.1)]
