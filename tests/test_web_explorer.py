@@ -122,7 +122,7 @@ WORD = re.compile(r"[A-Za-zÀ-ÖØ-öø-ÿ]+")
 ALLOWED = {
     "agm", "rk", "runge", "kutta", "verlet", "störmer", "taylor", "euler", "api", "csv", "png", "pendulab",
     "english", "português", "rad", "deg", "s", "ms", "m", "cm", "mm", "kg", "j", "g", "l", "h", "t", "p", "e", "x",
-    "max", "sqrt", "sin", "cos", "ln", "f", "fa", "a", "pi", "omega", "gamma", "beta", "theta", "state", "all",
+    "max", "sqrt", "sin", "cos", "ln", "f", "fa", "a", "pi", "omega", "gamma", "beta", "theta",
 }
 
 #: English words that would give a page left half translated away, whatever the catalogue holds.
