@@ -417,3 +417,35 @@ def test_template_on_a_bad_stdout_is_one_line(tmp_path, redirect, reason):
     assert res.returncode == 1
     lines = res.stderr.strip().splitlines()
     assert len(lines) == 1 and lines[0].startswith("pendulab key: error: cannot write to standard output: " + reason)
+
+
+def test_an_untrusted_3b_return_is_marked_and_said_untrusted(tmp_path, capsys):
+    """A sum of 1115 (l = 1.4953487812): problem3.py's h = 0.2 simulation returns, at a bracket
+    26 % of T off, which the engine calls untrusted (the report's and key's 3(b)). A student
+    who answers as the program does is right, and the mark says "untrusted" beside 3(b)'s
+    outcome and bracket, in the text (right answers are otherwise not listed), --json and pt."""
+    from pendulab.report.mark import why
+
+    _total, _digits, l_text = LENGTH([1115])
+    _t_max, j, _over, t = P3.plot_t_max(float(l_text), AGM(float(l_text), P3.ALPHA))
+    assert j is not None  # the program finds a return
+    answers = {"3b_outcome": "returns", "3b_bracket_lo": repr(t[j]), "3b_bracket_hi": repr(t[j + 1])}
+    cols = ("3b_outcome", "3b_bracket_lo", "3b_bracket_hi")
+    gm = mark.mark_group(Entry((1115,), None, 1), mark.AnswerRow((1115,), 2, answers), mark.default_scheme())
+    v = {x.column: x for x in gm.verdicts}
+    assert all(v[c].right and v[c].status == "untrusted" for c in cols), [(v[c].right, v[c].status) for c in cols]
+    assert "untrusted" in why(v["3b_outcome"]) and "não fiável" in why(v["3b_bracket_lo"], "pt")
+    assert not any(x.status for c, x in v.items() if c not in cols)  # only 3(b)'s return
+    trusted = {q.column: q for q in mark.group_questions((262, 407, 634))}
+    assert trusted["3b_outcome"].status == trusted["3b_bracket_lo"].status == ""
+    # the command's text and --json
+    groups = tmp_path / "g.txt"
+    groups.write_text("1115\n", encoding="utf-8")
+    sheet = tmp_path / "answers.csv"
+    sheet.write_text(answers_csv([Entry((1115,), None, 1)], mark.columns(), [answers]), encoding="utf-8")
+    assert main(["mark", "--groups", str(groups), "--answers", str(sheet)]) == 0
+    lines = [line for line in capsys.readouterr().out.splitlines() if line.split()[:1] == ["3b_outcome"]]
+    assert len(lines) == 1 and "returns" in lines[0] and "untrusted" in lines[0]
+    assert main(["mark", "--groups", str(groups), "--answers", str(sheet), "--json"]) == 0
+    d = {x["column"]: x for x in json.loads(capsys.readouterr().out)["groups"][0]["verdicts"]}
+    assert d["3b_outcome"]["right"] and d["3b_outcome"]["status"] == "untrusted" and "untrusted" in d["3b_outcome"]["why"]

@@ -87,13 +87,16 @@ class Question(Result):
     #: The decimals the coursework prescribes (4(c): 6): an answer must equal the key to them,
     #: whatever digits it shows (trailing zeros dropped are the same number).
     decimals: int | None = None
+    #: ``"untrusted"`` where the key is the program's result but the engine does not trust it
+    #: (3(b)'s h = 0.2 return near the separatrix, as the report and key say); else ``""``.
+    status: str = ""
 
     def to_dict(self) -> dict[str, Any]:
         return {"column": self.column, "part": self.part, "scope": self.scope, "kind": self.kind,
                 "key": self.key, "key_text": key_text(self), "low": self.low, "high": self.high,
                 "slack": self.slack, "decimals": self.decimals,
                 "relative_slack": self.relative_slack, "signless": self.signless,
-                "min_digits": self.min_digits, "freedom": self.freedom,
+                "min_digits": self.min_digits, "freedom": self.freedom, "status": self.status,
                 "alternatives": [a.to_dict() for a in self.alternatives]}
 
 
@@ -367,7 +370,9 @@ def _sign_change(z1, z2) -> int | None:
 
 @functools.cache
 def _group_questions(students: tuple[int, ...]) -> tuple[Question, ...]:
+    from ..core.cases import PROBLEM3_PLOT_STEP
     from ..numerics.simulation import simulate
+    from .problems import plot_outcome
 
     p = coursework.load()
     p3, agm = p["problem3.py"], p["agm.py"]
@@ -391,8 +396,11 @@ def _group_questions(students: tuple[int, ...]) -> tuple[Question, ...]:
                       "agm_order", slack=_ulps(exact, 8), min_digits=10))
     t_max, j, over, t = p3.plot_t_max(length, exact)
     outcome = "returns" if j is not None else "leaves" if over is not None else "none"
+    # The engine's word on that return, as the key's plot.status: an "untrusted" return (a sum of
+    # 1115) is still the program's answer, and a student's is marked against it, with the status.
+    status = "untrusted" if plot_outcome(length, p3.ALPHA, PROBLEM3_PLOT_STEP, exact)[4] == "untrusted" else ""
     out.append(_choice("3b_outcome", "3(b)", "group", outcome, [Alternative("program", "", outcome)],
-                       "h02_outcome", kind="text"))
+                       "h02_outcome", kind="text", status=status))
     search = p3.SEARCH * exact
     event = t[j + 1] if j is not None else t[over] if over is not None else search
     out.append(Question("3b_t_max", "3(b)", "group", "at_least", round(t_max, 9),  # as the program prints it
@@ -401,7 +409,7 @@ def _group_questions(students: tuple[int, ...]) -> tuple[Question, ...]:
     if j is not None:
         for col, v in (("3b_bracket_lo", t[j]), ("3b_bracket_hi", t[j + 1])):
             out.append(_choice(col, "3(b)", "group", v, [Alternative("program", "", v)], "grid_times",
-                               slack=_ulps(v, 4)))
+                               slack=_ulps(v, 4), status=status))
     cubic_part: list[Question] = []
     for h, tag in STEP_TAGS.items():
         # the lists of taylor.py's (3), by the engine's taylor2 kernel: the same doubles, bit for
@@ -657,13 +665,15 @@ class Verdict:
     low: float | None = None
     high: float | None = None
     key_text: str = ""
+    #: The question's :attr:`Question.status` (``"untrusted"``: the key is not to be trusted).
+    status: str = ""
 
     def to_dict(self) -> dict[str, Any]:
         return {"column": self.column, "part": self.part, "answer": self.answer, "key": self.key,
                 "key_text": self.key_text,
                 "right": self.right, "code": self.code, "method": self.method, "detail": self.detail,
                 "points": self.points, "max_points": self.max_points, "freedom": self.freedom,
-                "min_digits": self.digits, "low": self.low, "high": self.high}
+                "min_digits": self.digits, "low": self.low, "high": self.high, "status": self.status}
 
 
 def judge(q: Question, text: str, min_digits: int | None = None) -> tuple[bool, Code, Alternative | None]:
@@ -797,7 +807,7 @@ def mark_group(entry: Entry, row: AnswerRow | None, scheme: Scheme, duplicate_of
         worth = float(scheme.points.get(q.column, 1.0))
         verdicts.append(Verdict(q.column, q.part, text, q.key, right, code, None if alt is None else alt.method,
                                 None if alt is None else alt.detail, worth if right else 0.0, worth,
-                                q.freedom, digits, q.low, q.high, key_text(q)))
+                                q.freedom, digits, q.low, q.high, key_text(q), q.status))
     if not any(q.column == "3b_bracket_lo" for q in group_questions(entry.students)):
         for col in ("3b_bracket_lo", "3b_bracket_hi"):  # no return at h = 0.2: nothing to bracket
             text = answers.get(col, "")

@@ -58,9 +58,12 @@ def why(v: Verdict, lang: str = "en") -> str:
     method = "" if v.method is None else sentence(f"mark.method.{v.method}", lang, detail=v.detail)
     freedom = sentence(f"mark.freedom.{v.freedom}", lang)
     if v.code == "outside" and v.method is None:
-        return sentence("mark.code.outside_text", lang)
-    return sentence(f"mark.code.{v.code}", lang, method=method, freedom=freedom, digits=v.digits,
-                    low="" if v.low is None else f"{v.low:.6g}", high="" if v.high is None else f"{v.high:.6g}")
+        words = sentence("mark.code.outside_text", lang)
+    else:
+        words = sentence(f"mark.code.{v.code}", lang, method=method, freedom=freedom, digits=v.digits,
+                         low="" if v.low is None else f"{v.low:.6g}", high="" if v.high is None else f"{v.high:.6g}")
+    # a key the engine does not trust says so, right or wrong (3(b)'s untrusted return)
+    return f"{words}; {sentence(f'mark.status.{v.status}', lang)}" if v.status else words
 
 
 def flags(g: dict[str, Any], lang: str = "en") -> str:
@@ -125,7 +128,7 @@ def text(marks: ClassMarks, lang: str = "en") -> str:
         if flags(g, lang):
             out.append(f"  ! {flags(g, lang)}")
         for v in gm.verdicts:
-            if not v.right:
+            if not v.right or v.status:  # a right answer to an untrusted key is shown too
                 out.append(f"  {v.column:<22} {v.answer or '-':<22} key {_key_cell(v):<18} {why(v, lang)}")
     out.append(summary_text(marks, lang))
     out += histogram_lines(marks)
