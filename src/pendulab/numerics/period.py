@@ -221,7 +221,6 @@ def agm_period(length: float | Exact, amplitude: float | Exact, g: float | Exact
 @overload
 def agm_period(length: ArrayLike, amplitude: ArrayLike, g: float | Exact = G,
                iterations: int | None = None) -> NDArray[np.float64]: ...
-@elementwise(length=1.0, amplitude=0.0)
 def agm_period(length: float | Exact | ArrayLike, amplitude: float | Exact | ArrayLike, g: float | Exact = G,
                iterations: int | None = None) -> float | NDArray[np.float64]:
     """The period by the arithmetic-geometric mean, equations (7)-(8).
@@ -261,8 +260,9 @@ def agm_period(length: float | Exact | ArrayLike, amplitude: float | Exact | Arr
     the kernels' rounding test fails (a few amplitudes in 10^6), :func:`nearest_period`
     (mpmath) gives the double. The first scalar call in a process loads numba.
     """
-    # One pendulum given as floats inside the ranges where every check below passes:
-    # the kernel without them (a notebook's loop of calls). Anything else takes the checks.
+    # One pendulum given as floats inside the ranges where every check passes (NaN fails
+    # them): the kernel without the checks or numpy's conventions (a notebook's loop of
+    # calls). Anything else takes both.
     if (type(length) is float and type(amplitude) is float and type(g) is float
             and 0.0 <= amplitude < _math.pi and _SAFE_LO <= length <= _SAFE_HI and _SAFE_LO <= g <= _SAFE_HI):
         if iterations is None:
@@ -271,6 +271,12 @@ def agm_period(length: float | Exact | ArrayLike, amplitude: float | Exact | Arr
                 return t
         elif type(iterations) is int and 0 <= iterations <= 1000:
             return _TWO_PI * _math.sqrt(length / g) / agm(_math.cos(0.5 * amplitude), iterations, FIXED)[0]
+    return _agm_period(length, amplitude, g, iterations)
+
+
+@elementwise(length=1.0, amplitude=0.0)
+def _agm_period(length: Any, amplitude: Any, g: Any, iterations: int | None) -> Any:
+    """:func:`agm_period` with its checks, numpy's conventions and the mpmath fallback."""
     if iterations is not None:
         iterations = _v.integer("iterations", iterations, 0, 1000)
     exact_array = iterations is None and not (_is_scalar(amplitude) and _is_scalar(length))
