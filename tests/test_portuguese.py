@@ -1,11 +1,15 @@
 """The Portuguese of the report and the programs: one spelling standard, European Portuguese
 after the 1990 agreement (as IST writes today). A word list of the forms that agreement
 retired (the silent c and p: exacto, recta, correcção, óptimo, ...) must find none in the
-catalogue, the programs' translations or the programs as ``--lang pt`` writes them."""
+catalogue, the report's Typst templates, the programs' translations or the programs as
+``--lang pt`` writes them (their comments, docstrings and printed words); and no English
+word is left in the Portuguese text (``degrees``, ``doubles``, ``negligible``, ``STUDENT``)."""
 from __future__ import annotations
 
+import io
 import json
 import re
+import tokenize
 from importlib import resources
 
 import pytest
@@ -37,6 +41,10 @@ RETIRED = {
     "Janeiro": "janeiro", "Fevereiro": "fevereiro", "Dezembro": "dezembro",
 }
 WORD = re.compile(r"[A-Za-zÀ-ÿ-]+")
+#: English words a Portuguese sentence has no use for (names of code, in backquotes or
+#: format fields, aside).
+ENGLISH = re.compile(r"\b(the|of|and|with|from|is|by|degrees|doubles?|negligible|rounding|error|"
+                     r"STUDENT|below|above|steps?|points?|estimate|bound)\b")
 
 
 def retired(text: str) -> list[str]:
@@ -56,6 +64,36 @@ def test_the_catalogue_writes_1990_spelling():
 @pytest.mark.parametrize("name", coursework.PROGRAMS)
 def test_the_programs_write_1990_spelling(name):
     assert retired(coursework.source(name, "pt")) == []
+
+
+def test_the_templates_write_1990_spelling():
+    templates = [f for f in resources.files("pendulab.report").iterdir() if f.name.endswith(".typ")]
+    assert {f.name for f in templates} >= {"report.typ", "key.typ", "mark.typ"}
+    assert {f.name: retired(f.read_text(encoding="utf-8")) for f in templates} == {
+        f.name: [] for f in templates}
+
+
+def _prose(text: str) -> str:
+    """Words, without code names: backquoted code, placeholders and format fields dropped."""
+    return re.sub(r"`[^`]*`|\{[^{}]*\}", " ", text)
+
+
+def test_no_english_word_in_the_portuguese():
+    table = json.loads(resources.files("pendulab.report").joinpath("pt.json").read_text(encoding="utf-8"))
+    report = {key: ENGLISH.findall(_prose(_values(v))) for key, v in table.items()
+              if not key.startswith("web.") and key != "refs"}  # the references cite English titles
+    assert {k: v for k, v in report.items() if v} == {}
+    programs = {}
+    for name in coursework.PROGRAMS:
+        text = coursework.source(name, "pt")
+        words = [t.string for t in tokenize.generate_tokens(io.StringIO(text).readline)
+                 if t.type in (tokenize.COMMENT, tokenize.STRING)
+                 and not re.fullmatch(r"['\"]\w+['\"]", t.string)]  # a key ("error") is code
+        found = ENGLISH.findall(_prose(" ".join(words)))
+        if found:
+            programs[name] = found
+    assert programs == {}
+    assert ENGLISH.findall("2(a) [55, 60] degrees") == ["degrees"]  # the check can fail
 
 
 def test_the_list_finds_what_it_lists():

@@ -41,15 +41,16 @@ def figure2(ax, z1, z2, alpha, words=WORDS):
     ax.axvline(0, color="0.7", linewidth=0.6)
     ax.set_xlabel(words["z1"])
     ax.set_ylabel(words["z2"])
-    ax.legend(loc="upper left")
+    ax.legend(loc="upper left", markerscale=0.5)  # the circle, not its size, in the key
 
 def figure3(ax, t, z1, coef, words=WORDS):
     """R3, 4(d)(i): every data point (t_j, z1_j) over phi~ of (10), on 801 points."""
     fine = np.linspace(t[0], t[-1], 801)
-    ax.plot(fine, problem4.basis(fine) @ coef, "-", color="C3", alpha=0.45,
-            linewidth=2.4, label=words["fit"])
-    ax.plot(t, z1, "o", markersize=1.1, markeredgewidth=0, color="C0",
-            label=words["data"])
+    ax.plot(fine, problem4.basis(fine) @ coef, "-", color="C3", alpha=0.35,
+            linewidth=4, label=words["fit"])
+    # the 401 points, dark and small over the wide pale curve: both show
+    ax.plot(t, z1, "o", markersize=1.6, markeredgewidth=0, color="C0",
+            label=words["data"], zorder=3)
     ax.set_xlabel(words["t"])
     ax.set_ylabel(words["fit_y"])
     ax.legend(loc="best", frameon=False, markerscale=3)

@@ -62,7 +62,7 @@ if __name__ == "__main__":
           f"f(a) = {sci(f(a), 4)}, f(b) = {sci(f(b), 4)},",
           f"f' >= {df(a):.6g}, {d2f(b):.6g} <= f'' <= {d2f(a):.6g},")
     print(f"     Newton steps from a, b: {steps[0]:.6g}, {steps[1]:.6g}",
-          f"(b - a = {b - a:.6g}); all conditions hold: {holds}")
+          f"(b - a = {b - a:.6g}); all conditions hold: {'yes' if holds else 'no'}")
     x0 = a if f(a) * d2f(a) > 0 else b  # Fourier: start at the end where f f'' > 0
     xs, delta = newton(x0)
     # each iterate to the rounding level delta (in degrees, plus the conversion's)

@@ -95,7 +95,7 @@ if __name__ == "__main__":
         print(f"4(a) t_max = {t_max} s, N = {n}, {n + 1} points; the last 10:")
         for j in range(len(t) - 10, len(t)):
             print(f"    {j:4d} {t[j]:5.2f} {z1[j]:.12g}")
-        print("4(c) A | r, symmetric:", bool(np.array_equal(a, a.T)))
+        print("4(c) A | r, symmetric:", "yes" if np.array_equal(a, a.T) else "no")
         for row, ri in zip(a, r):
             print("    " + " ".join(f"{v:10.6f}" for v in row) + f" | {ri:.6f}")
         print(f"     Cholesky pivots L_kk^2 > 0, the smallest {diag.min() ** 2:.6g};",
