@@ -1,4 +1,4 @@
-"""Every printed digit right (issue 32, item 5): for five groups, each number the report
+"""Every printed digit right (issue 32, item 5): for six groups, each number the report
 prints in problems 1, 2, 3(a)-(d), 4 and 5 lies within one unit of its last digit of the
 true value of the quantity the report says it is, computed here independently in mpmath
 (50 digits; 30 for the long runs of (3)) or from exact decimals.
@@ -16,7 +16,8 @@ The rule, per kind of quantity:
 * a *bound* (printed rounded up: ``|e_g| <=``, ``||A - A~||_2 <=``, a moved amount) is right
   when ``true <= printed <= true + 10^q``;
 * a value whose error (measured or propagated) leaves no digit is not printed as digits but
-  marked (``0`` at the error's place, or the words of the catalogue); the test checks the mark;
+  marked (``≤ b``, ``|x| + error`` rounded up to one digit, or the words of the catalogue): a
+  ``≤ b`` is checked as a true upper bound of the value's size, ``|true| <= b``;
 * inputs, integers (``j``, ``n``, ``k_max``) and multiples of the step are exact: equal.
 
 Problems 1, 2, 4 and 5 do not depend on the group: their numbers are checked for every group
@@ -24,7 +25,7 @@ against truths computed once (a test checks every group prints the same for them
 report prints the same numbers (checked for the example group). Not checked here: 3(b)'s
 footnote's amplitude limit of 7 iterations and its distance to pi (the engine's search,
 ``fixed_iterations_limit``) and the engine's numbers of an untrusted h = 0.2 return, which
-none of the five groups has (``test_report_sentences``).
+none of the six groups has (``test_report_sentences``).
 """
 from __future__ import annotations
 
@@ -38,11 +39,12 @@ import pytest
 
 from pendulab.jobs.coursework import load
 
-GROUPS = [(262, 407, 634), (99999, 1), (83001, 91234, 77777), (45678,), (1000, 2000, 3500)]
+#: (5,): 3(d)'s divided difference t[x_0..x_4] and e(0) are swamped by their rounding (printed ≤ b)
+GROUPS = [(262, 407, 634), (99999, 1), (83001, 91234, 77777), (45678,), (1000, 2000, 3500), (5,)]
 DPS = 50
 G = "9.80665"
 FIXED = ["problem 1", "problem 2", "problem 4", "problem 5"]  # not the group's: the same for all
-pytestmark = pytest.mark.slow  # the sections of five groups and (3) at h = 1e-4 in mpmath: a minute
+pytestmark = pytest.mark.slow  # the sections of six groups and (3) at h = 1e-4 in mpmath: a minute
 
 
 def sections(students, only=None, lang="en"):
@@ -481,18 +483,21 @@ def test_3d_prints_only_right_digits(docs, students):
             assert_exact(row[0], k)
             assert_right(row[1], x[k])
             assert_exact(row[2], c["y"][k])
-            assert_right(row[3], dd[k])
+            assert_right_or_under(row[3], dd[k])
         for key, k in (("p3d.x0", 0), ("p3d.x1", 1), ("p3d.x2", 2), ("p3d.z4", 4)):
             assert_right(v[key], x[k])
-        for key, k in (("p3d.c0", 0), ("p3d.c1", 1), ("p3d.c2", 2), ("p3d.c3", 3), ("p3d.dd", 4)):
+        for key, k in (("p3d.c0", 0), ("p3d.c1", 1), ("p3d.c2", 2), ("p3d.c3", 3)):
             assert_right(v[key], dd[k])
+        assert v["p3d.dd"].startswith(("= ", "≤ ")) and v["p3d.errest_eq"].startswith(("= ", "≤ "))
+        assert_right_or_under(v["p3d.dd"].removeprefix("= "), dd[4])  # a value its rounding swamps as ≤
+        assert v["p3d.errest_eq"].removeprefix("= ") == v["p3d.errest"]
         assert_exact(v["p3d.t4"], c["y"][4])
         for key, k in (("p3d.j", 0), ("p3d.j0", -1), ("p3d.j3", 2), ("p3d.jm2", -2)):
             assert_exact(v[key], c["j"] + k)
         assert_exact(v["p3d.h"], mp("1e-3"))
         assert_right(v["p3d.value"], c["p0"])
         assert_right(v["p3d.prod"], c["prod"])
-        assert_right(v["p3d.errest"], e0)
+        assert_right_or_under(v["p3d.errest"], e0)
         assert_right(v["p3d.taylor"], abs(c["p0"] - t))
         # the rounding level of e(0): half an ulp of each t_k through the divided difference
         rounding = abs(c["prod"]) * mpmath.fsum(
@@ -503,7 +508,7 @@ def test_3d_prints_only_right_digits(docs, students):
         # "the interpolation error, at most about {bound}": a bound of |e(0)| and of the rounding level
         b, _ = parsed(v["p3d.bound"])
         assert b >= max(abs(e0), rounding)
-        assert_right(v["p3d.ratio"], max(abs(e0), rounding) / abs(c["p0"] - t))
+        assert_right_or_under(v["p3d.ratio"], max(abs(e0), rounding) / abs(c["p0"] - t))
 
 
 @pytest.mark.parametrize("students", GROUPS)

@@ -140,8 +140,8 @@ def key_text(q: Question) -> str:
     spread = 0.0 if q.low is None or q.high is None or q.kind != "range" else q.high - q.low
     error = max(q.slack, spread if quantity not in ("p2.iterate",) else 0.0, math.ulp(q.key))
     text = digits.shown(quantity, q.key, error)
-    if q.key != 0 and not any(ch in "123456789" for ch in digits.split(text)[0]):
-        # the error allows no digit in the fixed places shown: its first digit, with its sign
+    if q.key != 0 and (text.startswith("<=") or not any(ch in "123456789" for ch in digits.split(text)[0])):
+        # the error allows no digit in the places shown (or swamps the key, "<= b"): its first digit, with its sign
         return digits.scientific(q.key, 1)
     return text
 

@@ -240,9 +240,10 @@ def problem3(doc: Doc, students: Sequence[int]) -> None:
         "p3d.value": shown("estimate", c["p0"]),
         "p3d.z4": err(c["z2"][4], e["z2"][4]),
         "p3d.t4": fixed(c["t"][4], places),
-        "p3d.dd": err(c["dd4"], e["coef"][4]),
+        "p3d.dd": eq(err(c["dd4"], e["coef"][4])),  # "= 1.2 × 10^−4", or "≤ 5 × 10^−4" its rounding swamps
         "p3d.prod": sci(prod, 6),
         "p3d.errest": err(c["e0"], e["e0"]),
+        "p3d.errest_eq": eq(err(c["e0"], e["e0"])),
         "p3d.moved": sci_up(e["e0"], 1),
         "p3d.movedp": sci_up(e["p0"], 1),
         "p3d.t_hat": shown("t_hat", t_hat),
