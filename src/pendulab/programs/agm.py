@@ -1,8 +1,7 @@
 """The period of the pendulum by the arithmetic-geometric mean, (7)-(8).
 
 T = 2 pi sqrt(l/g) / M(1, cos(alpha/2)), M the arithmetic-geometric mean
-(Carvalhaes and Suppes, Am. J. Phys. 76, 1150 (2008)).
-"""
+(Carvalhaes and Suppes, Am. J. Phys. 76, 1150 (2008))."""
 import math
 import sys
 

@@ -1,7 +1,6 @@
 """The pendulum length of a group, problem 3(b): add the student numbers, delete
 the zeros of the sum; l is the geometric mean of the digits left, rounded half away
-from zero to 10 decimals (262, 407, 634 give m = 133 and l = 2.0800838231).
-"""
+from zero to 10 decimals (262, 407, 634 give m = 133 and l = 2.0800838231)."""
 import math
 import sys
 from decimal import ROUND_HALF_UP, Decimal

@@ -1,8 +1,7 @@
 """Figures R1-R5 of the report with matplotlib, from the programs' own data: R1 and R2
 are the coursework's Figures 1 and 2 for the group (3(b)), R3 and R4 the fit of 4(d)(i)
 and its deviations, R5 the error of S_n against n (5(d)). Each function draws on the
-axes it is given; run alone, the program writes R1.png to R5.png.
-"""
+axes it is given; run alone, the program writes R1.png to R5.png."""
 import math
 import sys
 
@@ -26,8 +25,7 @@ def figure1(ax, t, z1, words=WORDS):
     """R1, the coursework's Figure 1: the points (t_j, z1_j)."""
     ax.plot(t, z1, "o", markersize=3, color="C0")
     ax.axhline(0, color="0.7", linewidth=0.6)
-    ax.set_xlabel(words["t"])
-    ax.set_ylabel(words["z1j"])
+    ax.set(xlabel=words["t"], ylabel=words["z1j"])
 
 def figure2(ax, z1, z2, alpha, words=WORDS):
     """R2, the coursework's Figure 2: Z_j = (z1_j, z2_j) joined by arrows, P circled."""
@@ -39,8 +37,7 @@ def figure2(ax, z1, z2, alpha, words=WORDS):
             markeredgecolor="C3", markeredgewidth=1.3, label=words["P"])
     ax.axhline(0, color="0.7", linewidth=0.6)
     ax.axvline(0, color="0.7", linewidth=0.6)
-    ax.set_xlabel(words["z1"])
-    ax.set_ylabel(words["z2"])
+    ax.set(xlabel=words["z1"], ylabel=words["z2"])
     ax.legend(loc="upper left", markerscale=0.5)  # the circle, not its size, in the key
 
 def figure3(ax, t, z1, coef, words=WORDS):
@@ -51,8 +48,7 @@ def figure3(ax, t, z1, coef, words=WORDS):
     # the 401 points, dark and small over the wide pale curve: both show
     ax.plot(t, z1, "o", markersize=1.6, markeredgewidth=0, color="C0",
             label=words["data"], zorder=3)
-    ax.set_xlabel(words["t"])
-    ax.set_ylabel(words["fit_y"])
+    ax.set(xlabel=words["t"], ylabel=words["fit_y"])
     ax.legend(loc="best", frameon=False, markerscale=3)
 
 def figure4(ax, t, deviations, tol, words=WORDS):
@@ -62,8 +58,7 @@ def figure4(ax, t, deviations, tol, words=WORDS):
     ax.axhline(0, color="0.6", linewidth=0.5)
     ax.plot(t, deviations, "-", color="C2", linewidth=0.8)
     ax.set_yscale("symlog", linthresh=tol)
-    ax.set_xlabel(words["t"])
-    ax.set_ylabel(words["dev"])
+    ax.set(xlabel=words["t"], ylabel=words["dev"])
 
 def figure5(ax, n, errors, words=WORDS):
     """R5, 5(d): |S_n - T^| against n on log-log axes, with the slope n^(-1/2)."""
@@ -72,8 +67,7 @@ def figure5(ax, n, errors, words=WORDS):
     ax.loglog(n, GUIDE * errors[0] * (n / n[0]) ** -0.5, ":", color="0.4",
               label=words["guide"])
     ax.minorticks_off()  # only n = 10^k carry points
-    ax.set_xlabel(words["n"])
-    ax.set_ylabel(words["error"])
+    ax.set(xlabel=words["n"], ylabel=words["error"])
     ax.legend(loc="best", frameon=False)
 
 def figures(students):
@@ -83,16 +77,13 @@ def figures(students):
                        problem3.plot_t_max(l, t_hat(l, problem3.ALPHA))[0])
     t4, y4, _ = taylor(problem4.L, problem4.ALPHA, problem4.H,
                        math.ceil(t_hat(problem4.L, problem4.ALPHA)))
-    coef, deviations = problem4.fit(t4, y4)[3:]
+    coef, res = problem4.fit(t4, y4)[3:]
     rows = problem5.table(t_hat(problem5.L, problem5.ALPHA))[1:]  # n = 10 .. 10^5
     return {"R1": (figure1, (t, z1)), "R2": (figure2, (z1, z2, problem3.ALPHA)),
-            "R3": (figure3, (t4, y4, coef)),
-            "R4": (figure4, (t4, deviations, problem4.TOL)),
+            "R3": (figure3, (t4, y4, coef)), "R4": (figure4, (t4, res, problem4.TOL)),
             "R5": (figure5, ([r[0] for r in rows], [r[2] for r in rows]))}
 
 if __name__ == "__main__":
-    import matplotlib
-    matplotlib.use("Agg")
     from matplotlib.figure import Figure
     students = [int(s) for s in sys.argv[1:]] or [262, 407, 634]
     print(f"R5: the guide n^(-1/2) is drawn {GUIDE:g} times above the first error")

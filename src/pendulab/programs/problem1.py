@@ -1,7 +1,6 @@
 """Problem 1: g = 4 pi^2 l/T^2 from a measured l and T, and its propagated error.
 
-l = 115.2 cm +- 0.3 cm, T = 2.1536 s +- 2e-4 s.
-"""
+l = 115.2 cm +- 0.3 cm, T = 2.1536 s +- 2e-4 s."""
 import math
 from decimal import ROUND_HALF_UP, Decimal
 
@@ -46,7 +45,6 @@ if __name__ == "__main__":
     print(f"l = {L:g} m +- {DL:g} m, T = {T:g} s +- {sci(DT, 1)} s")
     print(f"g = {r['g']:.10g} m/s^2,",
           f"dg/dl = {r['dg_dl']:.8g}, dg/dT = {r['dg_dt']:.8g}")
-    # the bounds rounded up, so that they stay bounds
     print(f"1(a) |e_g| <= {up(r['abs_error'], 4)} m/s^2,",
           f"|e_g|/g <= {up(r['rel_error'], 4)}")
     print(f"     dl/l = {sci(DL / L, 2)}, 2 dT/T = {sci(2 * DT / T, 2)},",

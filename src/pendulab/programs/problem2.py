@@ -1,8 +1,7 @@
 """Problem 2: the amplitude alpha with T~(alpha) = 1.5 s, (9), by Newton's method.
 
 f(alpha) = (2 pi/p)(1 + k^2/4) - 1.5, k = sin(alpha/2), p = sqrt(g/l), l = 0.5 m;
-f'(alpha) = (2 pi/p) sin(alpha)/8 and f''(alpha) = (2 pi/p) cos(alpha)/8.
-"""
+f'(alpha) = (2 pi/p) sin(alpha)/8 and f''(alpha) = (2 pi/p) cos(alpha)/8."""
 import math
 
 from digits import eq, right, sci, sci_up
@@ -86,7 +85,6 @@ if __name__ == "__main__":
     print(f"     closed form: |alpha - x_N| <= {sci_up(closed - xs[-1], 2)}")
     q, rho, k_max = quotients(xs, delta)
     for k in range(len(q)):
-        # only the digits its rounding error leaves right
         print(f"2(c) q_{k} = {right(q[k], rho[k] * q[k])},",
               f"relative rounding error {sci(rho[k], 1)}")
     print(f"     k_max = {k_max} (rounding error at most {Q_TOL:.0%});",

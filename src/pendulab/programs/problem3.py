@@ -2,8 +2,7 @@
 
 z2 = theta' changes sign from + to - as the pendulum returns to P = (alpha, 0)
 (Figure 2): T lies in [t_j, t_(j+1)]. A line (3(c)) and an inverse cubic (3(d))
-through the points (z2_k, t_k) around the change estimate the t at which z2 = 0.
-"""
+through the points (z2_k, t_k) around the change estimate the t at which z2 = 0."""
 import math
 import sys
 
@@ -136,7 +135,6 @@ if __name__ == "__main__":
     bound = max(abs(r["e0"]), r["rounding"])
     print(f"    p(0) = {r['p0']:.12g}, (0-x0)...(0-x3) = {sci(r['prod'], 6)},",
           f"e(0) ~ {right(r['e0'], e['e0'])}")
-    # rounding moves e(0) and p(0) by at most e["e0"], e["p0"] (the 30-digit rerun)
     print(f"    rounding: e(0) by {sci_up(e['e0'], 1)}, p(0) by {sci_up(e['p0'], 1)},",
           f"the times' level {sci(r['rounding'], 2)};",
           f"at most about {sci_up(bound + e['e0'], 1)}")

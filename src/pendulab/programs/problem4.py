@@ -1,8 +1,7 @@
 """Problem 4: least-squares fit of the Taylor data by (10), normal equations.
 
 l = 3.5 m, alpha = pi/4, h = 0.01 on [0, t_max], t_max = ceil(T^), T^ of (8);
-phi(t) = gamma + a0 sin t + b0 cos t + a1 sin 2t + b1 cos 2t + a2 sin 3t + b2 cos 3t.
-"""
+phi(t) = gamma + a0 sin t + b0 cos t + a1 sin 2t + b1 cos 2t + a2 sin 3t + b2 cos 3t."""
 import math
 from decimal import ROUND_HALF_UP, Decimal
 
@@ -30,15 +29,12 @@ def round6(x):
 def normal_equations(t, y):
     """4(b)-(c): E(c) = sum_j (y_j - sum_i c_i phi_i(t_j))^2 is least where its
     gradient is 0: A c = r, A_ik = sum_j phi_i(t_j) phi_k(t_j), r_i = sum_j phi_i(t_j)
-    y_j. A = Phi^T Phi is symmetric, positive definite for independent columns."""
-    a, r = products(t, y)
-    return round6(a), round6(r)
-
-def products(t, y):
-    """A = Phi^T Phi and r = Phi^T y before rounding; A made exactly symmetric."""
+    y_j. A = Phi^T Phi is symmetric, positive definite for independent columns.
+    A and r rounded to 6 decimals, and A before rounding."""
     phi = basis(t)
     a = phi.T @ phi
-    return 0.5 * (a + a.T), phi.T @ np.asarray(y)
+    a = 0.5 * (a + a.T)  # exactly symmetric
+    return round6(a), round6(phi.T @ np.asarray(y)), a
 
 def cholesky(a):
     """4(c): A = L L^T, L lower triangular, column by column:
@@ -57,7 +53,7 @@ def cholesky(a):
 
 def fit(t, y):
     """4(d): A c = r as L z = r (forward), then L^T c = z (backward)."""
-    a, r = normal_equations(t, y)
+    a, r, _ = normal_equations(t, y)
     low = cholesky(a)
     n = len(r)
     z, coef = np.zeros(n), np.zeros(n)
@@ -65,8 +61,7 @@ def fit(t, y):
         z[i] = (r[i] - low[i, :i] @ z[:i]) / low[i, i]
     for i in reversed(range(n)):
         coef[i] = (z[i] - low[i + 1:, i] @ coef[i + 1:]) / low[i, i]
-    residuals = np.asarray(y) - basis(t) @ coef
-    return a, r, np.diag(low), coef, residuals
+    return a, r, np.diag(low), coef, np.asarray(y) - basis(t) @ coef  # the residuals
 
 def checks(t, y, a):
     """4(c)-(d) checked another way: the eigenvalues of the rounded A (its extremes and
@@ -74,15 +69,9 @@ def checks(t, y, a):
     inequality bounds how far rounding moved each eigenvalue, and the least-squares
     solution by the SVD (numpy.linalg.lstsq), which forms no normal equations."""
     eig = np.linalg.eigvalsh(a)
-    moved = np.linalg.norm(a - products(t, y)[0], 2)
+    moved = np.linalg.norm(a - normal_equations(t, y)[2], 2)
     svd = np.linalg.lstsq(basis(t), np.asarray(y), rcond=None)[0]
     return eig[0], eig[-1], eig[-1] / eig[0], moved, svd
-
-def answer(t_max):
-    """4(a)-(d) for the data on [0, t_max]."""
-    t, z1, _ = taylor(L, ALPHA, H, t_max)
-    a, r, diag, coef, res = fit(t, z1)
-    return t, z1, a, r, diag, coef, res, checks(t, z1, a)
 
 if __name__ == "__main__":
     reference = t_hat(L, ALPHA)
@@ -90,7 +79,9 @@ if __name__ == "__main__":
           f"2 pi/T^ = {2 * math.pi / reference:.6g} rad/s; h = {H:g}")
     # t_max = ceil(T^) as 4(a) says, and t_max = 6, the 601 points Y_0..Y_600 it names
     for t_max in (math.ceil(reference), 6):
-        t, z1, a, r, diag, coef, res, (low, high, cond, moved, svd) = answer(t_max)
+        t, z1, _ = taylor(L, ALPHA, H, t_max)
+        a, r, diag, coef, res = fit(t, z1)
+        low, high, cond, moved, svd = checks(t, z1, a)
         n = len(t) - 1
         print(f"4(a) t_max = {t_max} s, N = {n}, {n + 1} points; the last 10:")
         for j in range(len(t) - 10, len(t)):

@@ -2,8 +2,7 @@
 
 T = 4 sqrt(l/(2g)) int_0^alpha dtheta / sqrt(cos theta - cos alpha), l = 3.5 m,
 alpha = 4 pi/5; errors against T^ of (8). 5(a): the trapezoidal and Simpson rules
-need f(alpha), which is infinite; the nodes of (11) are inside the subintervals.
-"""
+need f(alpha), which is infinite; the nodes of (11) are inside the subintervals."""
 import math
 
 import numpy as np
@@ -70,19 +69,15 @@ if __name__ == "__main__":
     reference = t_hat(L, ALPHA)
     rows = table(reference)
     print(f"l = {L:g} m, T^ = {reference:.15g} s")
-    # each estimate with the digits its rounding error (rounding_error) leaves right
-    print(f"5(b) one application: {right(rows[0][1], rounding_error(1))} s,",
-          f"error {sci(rows[0][2], 3)}")
-    print(f"5(c) n = 10:          {right(rows[1][1], rounding_error(10))} s,",
-          f"error {sci(rows[1][2], 3)}")
+    for part, (n, p, e, _) in zip(["5(b) one application:", "5(c) n = 10:"], rows):
+        print(f"{part:21} {right(p, rounding_error(n))} s, error {sci(e, 3)}")
     print("5(d)      n  estimate            error     rate    substituted       error")
     floor = FLOOR * U * reference
     first = None  # the first n whose substituted error is at the floor
     for n, p, e, rate in rows[1:]:
         s = substituted(n)
-        first = first or (n if abs(s - reference) <= floor else None)
-        # at or below the floor an error is rounding: it is printed as <= the floor
         d = abs(s - reference)
+        first = first or (n if d <= floor else None)
         d = f"<= {sci_up(floor, 1)}" if d <= floor else sci(d, 2)
         print(f"    {n:6d}  {right(p, rounding_error(n)):<18}  {sci(e, 3):<8}",
               f" {rate:.4f}   {s:<17.15g} {d}")

@@ -1,6 +1,5 @@
 """The second-order Taylor algorithm (3) for theta'' = c sin(theta), c = -g/l (2),
-from theta(t0) = alpha, theta'(t0) = 0; problem 3(a) prints the table of Figure 3.
-"""
+from theta(t0) = alpha, theta'(t0) = 0; problem 3(a) prints the table of Figure 3."""
 import math
 
 G = 9.80665  # m/s^2
