@@ -56,6 +56,25 @@ def cli(capsys):
     return run
 
 
+@pytest.fixture(scope="module")
+def server():
+    """The real command, ``pendulab serve --port N``, in a child until the module's tests are
+    done: its base URL."""
+    from served import serve_in_child
+
+    with serve_in_child() as base:
+        yield base
+
+
+@pytest.fixture(scope="module")
+def browser():
+    """One headless Chromium for the module's tests (:func:`_browser.launched`)."""
+    from _browser import launched
+
+    with launched() as b:
+        yield b
+
+
 def assert_one_line_error(res, *fragments):
     """Exit status 2, one line on stderr naming what is wrong, no traceback."""
     assert res.code == 2, (res.out, res.err)

@@ -20,25 +20,11 @@ import pytest
 from PIL import Image
 from playwright.sync_api import TimeoutError as PlaywrightTimeoutError
 
-from _browser import VIEWPORTS, launched, record_errors
+from _browser import VIEWPORTS, record_errors
 from pendulab.core import methods
 from pendulab.core.inputs import parse_angle
 from pendulab.numerics import simulation
 from reference import EXAMPLE_LENGTH, EXAMPLE_LENGTH_TEXT, ellipk_period
-from served import serve_in_child
-
-
-@pytest.fixture(scope="module")
-def server():
-    """The real command, ``pendulab serve --port N``, until the module's tests are done."""
-    with serve_in_child() as base:
-        yield base
-
-
-@pytest.fixture(scope="module")
-def browser():
-    with launched() as b:
-        yield b
 
 
 @pytest.fixture

@@ -16,23 +16,12 @@ from pathlib import Path
 
 import pytest
 
-from _browser import VIEWPORTS, launched, record_errors
-from served import serve_in_child
+from _browser import VIEWPORTS, record_errors
 
 AXE = Path(__file__).resolve().parent / "vendor" / "axe.min.js"
 RK4_HALF = "length=1&amplitude=30&unit=deg&step=0.5&t_max=20&method=rk4"
 
 
-@pytest.fixture(scope="module")
-def server():
-    with serve_in_child() as base:
-        yield base
-
-
-@pytest.fixture(scope="module")
-def browser():
-    with launched() as b:
-        yield b
 
 
 def _open(browser, server, query: str, width: int, height: int):

@@ -15,24 +15,13 @@ import numpy as np
 import pytest
 from scipy.integrate import solve_ivp
 
-from _browser import VIEWPORTS, launched, record_errors
+from _browser import VIEWPORTS, record_errors
 from reference import G, ellipk_period
-from served import serve_in_child
 
 #: Two pendulums at 4x speed, each swinging its own amplitude.
 TWO = "/?length=1&amplitude=30&unit=deg&step=1e-3&t_max=60&speed=4&second=1&length2=1&amplitude2=80"
 
 
-@pytest.fixture(scope="module")
-def server():
-    with serve_in_child() as base:
-        yield base
-
-
-@pytest.fixture(scope="module")
-def browser():
-    with launched() as b:
-        yield b
 
 
 def _open(browser, server, url, throttle=None, width=1400, height=1000):

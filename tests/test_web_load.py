@@ -15,15 +15,9 @@ import httpx
 import pytest
 
 from reference import ellipk_period
-from served import serve_in_child
 
 N_REQUESTS = 200
 
-
-@pytest.fixture(scope="module")
-def server():
-    with serve_in_child() as base:
-        yield base
 
 
 def requests() -> list[tuple[dict, float | None]]:
