@@ -177,8 +177,8 @@ ESTIMATE = ["estimate", "-l", "1", "-a", "2", "--step", "1e-3,2e-8"]  # about 4 
 @pytest.mark.parametrize(("args", "tries"), [
     (ESTIMATE, 12),
     (ESTIMATE[:-1] + ["1e-3,5e-8", "--method", "rk4", "--dense"], 6),
-    (["simulate", "--step", "1e-6", "--t-max", "0.9", "--csv"], 4),  # 9 * 10^5 rows printed
-    (["sweep", "--amplitude", "0.1:3:200", "--step", "1e-5", "--method", "taylor:8"], 4),
+    (["simulate", "--step", "1e-6", "--t-max", "1", "--json"], 4),  # 10^6 rows in JSON (6 s here)
+    (["sweep", "--amplitude", "0.1:3:400", "--step", "1e-5", "--method", "taylor:8"], 4),  # 11 s here
 ])
 def test_ctrl_c_mid_run_ends_with_one_line_and_130(tmp_path, args, tries):
     """Ctrl+C at varied moments (while Python starts, while the kernel runs, while its result
@@ -338,9 +338,12 @@ def test_a_signal_while_a_kernel_compiles_ends_the_run(tmp_path, args, k, sig):
 def test_ctrl_c_while_a_cold_sweep_compiles_ends_with_one_line(tmp_path):
     """A real Ctrl+C from outside at several moments of a sweep's first run after an install
     (an empty numba cache: seconds of compiling, in the main thread and on the sweep's
-    threads): each try ends with 130 and one line, and writes no output file."""
+    threads, then the sweep itself): each try ends with 130 and one line, and writes no output file."""
+    # h = 1e-7: the sweep itself lasts well past the last try (about 30 s on two cores) even
+    # where compiling is fast, so every try stops a running sweep, never one that has finished.
+    cold = [*SWEEP[:4], "1e-7", *SWEEP[5:]]
     for i, delay in enumerate((0.5, 1.5, 2.5, 3.5)):
-        code, err = _signal_run(SWEEP, delay, signal.SIGINT, tmp_path, NUMBA_CACHE_DIR=str(tmp_path / f"numba{i}"),
+        code, err = _signal_run(cold, delay, signal.SIGINT, tmp_path, NUMBA_CACHE_DIR=str(tmp_path / f"numba{i}"),
                                 NUMBA_NUM_THREADS="2")
         assert _assert_stopped(code, err, signal.SIGINT, "sweep"), (delay, code, err)
         assert not (tmp_path / "out.csv").exists()
