@@ -100,6 +100,20 @@ def test_with_error_prints_only_right_digits(x, error):
         assert Fraction(error) > Fraction(1, 2) * Fraction(10) ** (q - 1)
 
 
+@given(st.floats(min_value=1e-3, max_value=1e3), st.floats(min_value=-0.5, max_value=0.5),
+       st.fractions(min_value=-1, max_value=1))
+def test_an_estimate_of_a_rounded_reference_prints_only_right_digits(reference, off, where):
+    """``estimate_of(x, T)``: T a correctly rounded double, so the truth is anywhere within
+    T's half ulp of it; every such truth is within one unit of the printed last place."""
+    x = reference * (1 + off * 10.0 ** -(abs(where.numerator) % 16))  # estimates from 0 to 15 digits right
+    text = digits.estimate_of(x, reference)
+    truth = Fraction(reference) + where * Fraction(math.ulp(reference)) / 2
+    if text.startswith("<= "):
+        assert abs(truth) <= value(text[3:])
+    else:
+        assert abs(value(text) - truth) <= Fraction(10) ** last_place(text)
+
+
 def test_the_issues_numbers():
     """x_0 = 60 degrees from its radians, and the 3(d) coefficient of issue 32."""
     x0 = math.degrees(math.radians(60))

@@ -10,6 +10,7 @@ import math
 from dataclasses import replace
 from pathlib import Path
 
+import mpmath
 import numpy as np
 import pytest
 from fastapi.testclient import TestClient
@@ -17,7 +18,7 @@ from fastapi.testclient import TestClient
 import plain_pendulum
 import reference
 from pendulab.cli import main
-from pendulab.core import methods
+from pendulab.core import digits, methods
 from pendulab.numerics import simulation
 from pendulab.numerics.crossing import estimate_period
 from pendulab.numerics.motion import energy, exact_motion
@@ -92,6 +93,26 @@ def test_simulate_reproduces_figure3(client):
     est = body["period"]["estimate"]
     assert est["bracket"] == pytest.approx([2.0, 2.1])
     assert body["period"]["period"] == pytest.approx(ellipk_period(1, math.pi / 4), rel=1e-14)
+
+
+@pytest.mark.parametrize(("method", "step"), [("taylor2", 0.1), ("taylor2", 1e-3), ("rk4", 0.05), ("verlet", 0.05),
+                                            ("taylor:8", 0.02)])
+def test_the_estimates_shown_carry_only_right_digits(client, method, step):
+    """The page prints ``shown``: each of its digits right against mpmath's period (within one
+    unit of the last place), and one digit fewer than the double where the error is visible."""
+    alpha = 2.0
+    body = client.get("/api/simulate", params={"length": 1, "amplitude": alpha, "step": step, "method": method,
+                                               "t_max": 1}).json()
+    e = body["period"]["estimate"]
+    mpmath.mp.dps = 40
+    truth = 2 * mpmath.pi * mpmath.sqrt(1 / mpmath.mpf(G)) / mpmath.agm(1, mpmath.cos(mpmath.mpf(alpha) / 2))
+    for k in ("linear", "cubic"):
+        text = e["shown"][k]
+        mant, exp = digits.split(text)
+        place = (exp or 0) - (len(mant.split(".")[1]) if "." in mant else 0)
+        assert abs(mpmath.mpf(text) - truth) <= mpmath.mpf(10) ** place, (k, text, e[k])
+        assert abs(e[k] - float(truth)) > 0.5 * 10.0 ** (place - 1), (k, text, e[k])  # not one digit more
+        assert len(mant.replace(".", "").lstrip("0")) < 16  # not the double's 16-17 digits
 
 
 def test_simulate_estimates_are_the_librarys(client):

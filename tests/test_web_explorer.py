@@ -259,3 +259,31 @@ def test_no_clipped_column_or_control(browser, server, width, height):
         assert pg.evaluate(CLIPPED_SELECTS) == []
     finally:
         context.close()
+
+
+@pytest.mark.slow
+@pytest.mark.parametrize("lang", ["en", "pt"])
+def test_the_page_prints_only_the_estimates_right_digits(browser, server, lang):
+    """Verlet at h = 0.05 (an error near 1e-3 s): the strip and the table print the API's
+    ``shown`` (the digits the error against the AGM period leaves right), in the page's
+    decimal form, not the double's twelve digits; the AGM period keeps its twelve."""
+    context = browser.new_context(viewport={"width": 1400, "height": 900})
+    pg = record_errors(context.new_page())
+    answers = []
+    pg.on("response", lambda r: answers.append(r) if "/api/simulate" in r.url else None)
+    try:
+        pg.goto(f"{server}/?lang={lang}&length=1&amplitude=2&unit=rad&step=0.05&method=verlet")
+        pg.wait_for_function("document.body.dataset.shown === '1'", timeout=60_000)
+        e = answers[-1].json()["period"]["estimate"]
+        assert e["errors"]["cubic"] > 1e-4  # the case: three digits right, not twelve
+
+        def local(text):
+            return text.replace(".", ",") if lang == "pt" else text
+
+        assert pg.locator("#est-cubic").text_content() == local(e["shown"]["cubic"])
+        assert pg.locator("#est-linear").text_content() == local(e["shown"]["linear"])
+        assert pg.locator("#strip-estimate").text_content() == local(e["shown"]["cubic"]) + " s"
+        assert len(re.sub(r"\D", "", pg.locator("#period-agm").text_content())) == 12
+        assert _errors(pg) == []
+    finally:
+        context.close()

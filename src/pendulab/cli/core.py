@@ -1,7 +1,6 @@
 """Commands of the foundation: ``period``, ``simulate``, ``estimate``, ``length``."""
 from __future__ import annotations
 
-import math
 import os
 
 import click
@@ -185,7 +184,7 @@ def _plots():
 @json_option
 def estimate(length, amplitude, steps, t_max, method, dense, g, as_json):
     """The period from simulations (problem 3(c)-(d)): bracket, linear and cubic estimates."""
-    from ..core.digits import with_error
+    from ..core.digits import estimate_of
     from ..numerics.crossing import estimate_periods
     from ..numerics.group import group_length
 
@@ -203,12 +202,11 @@ def estimate(length, amplitude, steps, t_max, method, dense, g, as_json):
         head += f" {'dense output':>18} {'|dense - T|':>12}"
     click.echo(head)
     below = outside = False
-    # An estimate of T carries the digits its error against T allows (that error, measured,
-    # plus T's own half ulp): a 15-digit p(0) at h = 1e-2 would claim 10 digits it has not.
-    half = math.ulp(period) / 2
 
-    def right(x: float, error: float) -> str:
-        return with_error(x, error + half)
+    # An estimate of T carries the digits its error against T allows: a 15-digit p(0) at
+    # h = 1e-2 would claim 10 digits it has not.
+    def right(x: float) -> str:
+        return estimate_of(x, period)
 
     for e, co in zip(rows, r.cubic_orders):
         br = f"[{e.bracket[0]:.10g}, {e.bracket[1]:.10g}]"
@@ -217,13 +215,13 @@ def estimate(length, amplitude, steps, t_max, method, dense, g, as_json):
         est = f"{e.cubic_error_estimate:.3e}"
         if not e.interpolation.error_estimate_resolved:
             est, below = f"<{e.interpolation.rounding_level:.1e}*", True
-        cubic = right(e.cubic, e.cubic_error)
+        cubic = right(e.cubic)
         if not e.cubic_in_bracket:  # no estimate of the period: flagged, not hidden
             cubic, outside = cubic + "!", True
-        line = (f"{e.step:>8g} {br:>25} {right(e.linear, e.linear_error):>18} {cubic:>18} {est:>17} "
+        line = (f"{e.step:>8g} {br:>25} {right(e.linear):>18} {cubic:>18} {est:>17} "
                 f"{e.linear_error:>12.3e} {e.cubic_error:>12.3e} {order}")
         if dense:
-            line += f" {right(e.dense, e.dense_error):>18} {e.dense_error:>12.3e}"
+            line += f" {right(e.dense):>18} {e.dense_error:>12.3e}"
         click.echo(line)
     if below:
         click.echo("* below the rounding level of t_k = k h: the estimate there is rounding, not interpolation error")

@@ -18,7 +18,7 @@ import math
 from dataclasses import dataclass
 from decimal import ROUND_CEILING, ROUND_HALF_EVEN, Context, Decimal
 
-__all__ = ["FORMS", "ORDER_ONE", "POLICY", "Form", "bound", "fixed", "noise_bound", "place", "rounding_noise", "scientific",
+__all__ = ["FORMS", "ORDER_ONE", "POLICY", "Form", "bound", "estimate_of", "fixed", "noise_bound", "place", "rounding_noise", "scientific",
            "shown", "significant", "split", "with_error"]
 
 #: The kinds of form: ``fixed`` (``digits`` decimals, the tables' columns), ``significant``
@@ -200,6 +200,13 @@ def with_error(x: float, error: float, most: int = 17) -> str:
         return noise_bound(x, error)  # |x| <= 0.5 10^q: the error swamps it (rounding_noise)
     # no digit below 10^q; tens and beyond as a power of ten (120 would claim the units)
     return _text(r, q, sci=True if q > 0 else None)
+
+
+def estimate_of(x: float, reference: float) -> str:
+    """``x``, an estimate of a quantity whose correctly rounded double is ``reference`` (the
+    AGM period), with the digits its error leaves right (:func:`with_error`): the error is
+    ``|x - reference|`` plus ``reference``'s own half ulp, which bounds ``|x - true|``."""
+    return with_error(x, abs(x - reference) + math.ulp(reference) / 2)
 
 
 def noise_bound(x: float, error: float) -> str:

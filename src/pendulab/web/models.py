@@ -67,6 +67,11 @@ class EstimateErrors(_Model):
     cubic: float | None
 
 
+class EstimateShown(_Model):
+    linear: str | None
+    cubic: str | None
+
+
 class Estimate(_Model):
     step: float
     method: str
@@ -77,6 +82,8 @@ class Estimate(_Model):
     cubic: float | None = Field(description="the inverse-cubic estimate of problem 3(d), s")
     cubic_error_estimate: float | None
     errors: EstimateErrors = Field(description="absolute errors against the AGM period, s")
+    shown: EstimateShown = Field(description="linear and cubic with only the digits their errors against the AGM "
+                                             "period leave right (pendulab.core.digits.estimate_of), as the page prints them")
     period: float = Field(description="the AGM period (converged), s")
 
 

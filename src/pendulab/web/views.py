@@ -21,6 +21,7 @@ from pydantic import BaseModel
 from ..core import inputs
 from ..core import validate as v
 from ..core.cases import PROBLEM5, G
+from ..core.digits import estimate_of
 from ..core.errors import InputError
 from ..core.methods import Status, resolve
 from . import limits, models, parameters, sampling, words
@@ -84,7 +85,9 @@ def estimate_view(length: float, amplitude: float, step: float, g: float, method
     e = s.estimate.to_dict()
     mid = 0.5 * (e["bracket"][0] + e["bracket"][1])
     errors = {"bracket_mid": abs(mid - e["period"]), "linear": _num(e["linear_error"]), "cubic": _num(e["cubic_error"])}
-    return {"estimate": _answer(models.Estimate, e) | {"bracket_mid": mid, "errors": errors},
+    shown = {k: estimate_of(x, e["period"]) if x is not None and math.isfinite(x) else None
+             for k, x in (("linear", e["linear"]), ("cubic", e["cubic"]))}
+    return {"estimate": _answer(models.Estimate, e) | {"bracket_mid": mid, "errors": errors, "shown": shown},
             "status": "found", "reason": None}
 
 

@@ -325,6 +325,8 @@ const sci = (x) => (x === null || x === undefined ? "–" : x === 0 ? "0" : loca
 const short = (x) => String(Number(x.toPrecision(12)));
 const shown = (x) => local(short(x));
 const label = (s) => word("page.run", { method: s.input.method, h: shown(s.input.step) });
+/** An estimate's linear or cubic with only the digits its error against the AGM period leaves right (the server's `shown`). */
+const right = (e, k) => (e.shown[k] === null ? "–" : local(e.shown[k].replace("<= ", "≤ ")));
 
 function renderFlags() {
   // At the top of the results (the first thing on a phone): what is wrong, in words.
@@ -373,7 +375,7 @@ function tableFor(s, suffix) {
     const cells = ["–", "–", "–"];
     if (e) {
       const err = k === "bracket" ? e.errors.bracket_mid : e.errors[k];
-      cells[0] = k === "bracket" ? `[${shown(e.bracket[0])}${lang === "pt" ? ";" : ","} ${shown(e.bracket[1])}]` : fix(e[k]);
+      cells[0] = k === "bracket" ? `[${shown(e.bracket[0])}${lang === "pt" ? ";" : ","} ${shown(e.bracket[1])}]` : right(e, k);
       cells[1] = sci(err);
       cells[2] = err === null ? "–" : sci(err / p.period);
     }
@@ -407,7 +409,7 @@ function renderPeriods() {
   $("period-agm").textContent = fix(p.period);
   // The strip under the swing (a phone's first screen, the projector): the period and the simulation's estimate.
   $("strip-period").textContent = fix(p.period);
-  $("strip-estimate").textContent = p.estimate ? `${fix(p.estimate.cubic)} s` : word("page.strip-none");
+  $("strip-estimate").textContent = p.estimate ? `${right(p.estimate, "cubic")} s` : word("page.strip-none");
   $("period-small").textContent = fix(p.small_angle_period);
   $("period2-line").hidden = !sims.second;
   if (sims.second) {
@@ -659,11 +661,11 @@ function renderEstimates() {
     const [br, li, cu, er] = [word("page.bracket"), word("page.linear"), word("page.inverse-cubic"), word("page.error-word")];
     traces.push(
       { x: [dx], y: [e.bracket_mid - T], mode: "markers", name: `${s.input.method} ${br}`, marker: { color: color(COLORS.bracket), size: 9, symbol: "line-ew-open" },
-        error_y: { type: "data", array: [half], color: color(COLORS.bracket), thickness: 2, width: 8 }, hovertemplate: `${s.input.method} ${br} [${local(e.bracket[0])}${lang === "pt" ? ";" : ","} ${local(e.bracket[1])}] s<extra></extra>` },
+        error_y: { type: "data", array: [half], color: color(COLORS.bracket), thickness: 2, width: 8 }, hovertemplate: `${s.input.method} ${br} [${shown(e.bracket[0])}${lang === "pt" ? ";" : ","} ${shown(e.bracket[1])}] s<extra></extra>` },
       { x: [1 + dx], y: [e.linear - T], mode: "markers", name: `${s.input.method} ${li}`, marker: { color: color(COLORS.linear), size: 11, symbol: "circle" + open, line: { width: 2, color: color(COLORS.linear) } },
-        hovertemplate: `${s.input.method} ${li} ${local(e.linear)} s<br>${er} %{y:.3e} s<extra></extra>` },
+        hovertemplate: `${s.input.method} ${li} ${right(e, "linear")} s<br>${er} %{y:.3e} s<extra></extra>` },
       { x: [2 + dx], y: [e.cubic - T], mode: "markers", name: `${s.input.method} ${cu}`, marker: { color: color(COLORS.cubic), size: 11, symbol: "diamond" + open, line: { width: 2, color: color(COLORS.cubic) } },
-        error_y: { type: "data", array: [Math.abs(e.cubic_error_estimate || 0)], color: color(COLORS.cubic) }, hovertemplate: `${s.input.method} ${cu} ${local(e.cubic)} s<br>${er} %{y:.3e} s<extra></extra>` },
+        error_y: { type: "data", array: [Math.abs(e.cubic_error_estimate || 0)], color: color(COLORS.cubic) }, hovertemplate: `${s.input.method} ${cu} ${right(e, "cubic")} s<br>${er} %{y:.3e} s<extra></extra>` },
     );
   }
   if (!traces.length) {
