@@ -10,6 +10,7 @@ units and proper names.
 from __future__ import annotations
 
 import json
+import math
 import re
 from importlib import resources
 from pathlib import Path
@@ -284,6 +285,27 @@ def test_the_page_prints_only_the_estimates_right_digits(browser, server, lang):
         assert pg.locator("#est-linear").text_content() == local(e["shown"]["linear"])
         assert pg.locator("#strip-estimate").text_content() == local(e["shown"]["cubic"]) + " s"
         assert len(re.sub(r"\D", "", pg.locator("#period-agm").text_content())) == 12
+        assert _errors(pg) == []
+    finally:
+        context.close()
+
+
+@pytest.mark.slow
+def test_the_portuguese_page_writes_and_reads_a_decimal_comma(browser, server):
+    """In Portuguese the fields show 3,5 (the URL keeps 3.5), and 1,5 typed is 1.5 m: the
+    period of l = 1.5 m (mpmath), the slider moved, the URL written with a point, no error."""
+    import mpmath
+
+    context, pg = _open(browser, server, "lang=pt&length=3.5&amplitude=30&unit=deg&step=0.01&g=9.80665", 1400, 900)
+    try:
+        assert pg.input_value("#length") == "3,5" and pg.input_value("#g") == "9,80665"
+        pg.fill("#length", "1,5")
+        mpmath.mp.dps = 30
+        t = 2 * mpmath.pi * mpmath.sqrt(mpmath.mpf("1.5") / mpmath.mpf("9.80665")) / mpmath.agm(1, mpmath.cos(mpmath.pi / 12))
+        want = mpmath.nstr(t, 12, strip_zeros=False).replace(".", ",")
+        pg.wait_for_function("(w) => document.getElementById('period-agm').textContent === w", arg=want, timeout=60_000)
+        assert "length=1.5" in pg.url and pg.locator("#length-error").is_hidden()
+        assert float(pg.input_value("#length-slider")) == pytest.approx(math.log10(1.5), abs=0.05)
         assert _errors(pg) == []
     finally:
         context.close()

@@ -14,6 +14,8 @@ from importlib import resources
 from pathlib import Path
 
 import pytest
+from hypothesis import given, settings
+from hypothesis import strategies as st
 from fastapi.testclient import TestClient
 
 from pendulab.web import create_app
@@ -138,3 +140,38 @@ def test_a_bad_language_is_shown_on_one_line(client):
     # Hypothesis (test_boundary_web) found lang = "a\nb" echoed with its newline.
     err = client.get("/api/config", params={"lang": "a\nb"}).json()["error"]
     assert err["message"] == "lang = 'a\\nb' is not allowed: must be en or pt" and err["field"] == "lang"
+
+
+SCALARS = st.sampled_from(["length", "amplitude", "g", "step", "t_max", "omega0", "damping", "drag", "mass"])
+BASE = {"length": "1", "amplitude": "0.5", "step": "0.01", "t_max": "2", "points": "64"}
+
+
+@settings(max_examples=60, deadline=None)
+@given(SCALARS, st.floats(min_value=-1e3, max_value=1e3, allow_nan=False).filter(lambda x: x != int(x)))
+def test_portuguese_reads_a_decimal_comma(client, field, x):
+    """With ``lang=pt`` a scalar typed with a decimal comma (``0,5``) is the number with a
+    point: the same answer, or the same refusal, whose message and value echo it as typed."""
+    dotted = repr(x)
+    if "e" in dotted:  # a comma only where a person writes one: 1,5e-05 is not how it is typed
+        dotted = f"{x:.6f}"
+    comma = dotted.replace(".", ",")
+    q = BASE | {"lang": "pt"}
+    with_point = client.get("/api/simulate", params=q | {field: dotted})
+    with_comma = client.get("/api/simulate", params=q | {field: comma})
+    assert with_comma.status_code == with_point.status_code
+    if with_point.status_code == 200:
+        assert with_comma.json()["input"] == with_point.json()["input"]
+    else:
+        err, ref = with_comma.json()["error"], with_point.json()["error"]
+        assert err["field"] == ref["field"]
+        if err["field"] == field:  # the refused value itself: as typed
+            assert err["value"] == comma and f"= {comma} não é permitido" in err["message"]
+        assert err["allowed"] == ref["allowed"]
+
+
+def test_english_refuses_a_decimal_comma_and_a_list_keeps_its_commas(client):
+    """``1,5`` is no number in English (it may mean 1500 there); ``steps`` is a list either way."""
+    r = client.get("/api/simulate", params=BASE | {"length": "1,5"})
+    assert r.status_code == 422 and r.json()["error"]["value"] == "1,5"
+    q = {"length": "1", "amplitude": "0.5", "steps": "0.1,0.05", "lang": "pt"}
+    assert [row["step"] for row in client.get("/api/convergence", params=q).json()["rows"]] == [0.1, 0.05]

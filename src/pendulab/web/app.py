@@ -55,7 +55,7 @@ from starlette.exceptions import HTTPException as StarletteHTTPException
 
 from ..core.errors import InputError
 from ..core.interrupt import Stopped, stop_when
-from . import guard, limits, models, views, words
+from . import guard, limits, models, parameters, views, words
 
 STATIC = Path(__file__).parent / "static"
 _log = logging.getLogger("pendulab.web")
@@ -237,7 +237,8 @@ def create_app(allowed_hosts: Iterable[str] = guard.LOCAL_HOSTS) -> FastAPI:
                 with stop_when(stop):
                     return Response(_encode(call(params)), media_type="application/json")
             except InputError as exc:
-                return JSONResponse(error_body(exc, words.safe_language(params)), status_code=422)
+                return JSONResponse(error_body(parameters.as_typed(exc, params), words.safe_language(params)),
+                                    status_code=422)
             except (OverflowError, FloatingPointError) as exc:
                 return JSONResponse(error_body(overflow(exc), words.safe_language(params)), status_code=422)
             except Stopped:
@@ -247,10 +248,12 @@ def create_app(allowed_hosts: Iterable[str] = guard.LOCAL_HOSTS) -> FastAPI:
         return Response(status_code=499) if answer is None else answer
 
     def light(call: Callable[[dict[str, str]], Any], query: dict[str, str | None]) -> Response:
+        params = _given(query)
         try:
-            return JSONResponse(call(_given(query)))
+            return JSONResponse(call(params))
         except InputError as exc:
-            return JSONResponse(error_body(exc, words.safe_language(query)), status_code=422)
+            return JSONResponse(error_body(parameters.as_typed(exc, params), words.safe_language(params)),
+                                status_code=422)
         except (OverflowError, FloatingPointError) as exc:
             return JSONResponse(error_body(overflow(exc), words.safe_language(query)), status_code=422)
 

@@ -7,15 +7,16 @@ range. The work a request may cause is bounded by :mod:`pendulab.web.limits`.
 """
 from __future__ import annotations
 
+import re
 from collections.abc import Mapping
 from typing import Any
 
 from ..core import inputs
 from ..core import validate as v
 from ..core.cases import G_TEXT, G
-from ..core.errors import InputError
+from ..core.errors import InputError, shown_value
 from ..core.methods import Method
-from . import limits
+from . import limits, words
 
 #: Gravity presets, m/s^2. Earth: standard gravity (the coursework's g); Moon and
 #: Jupiter: NASA Planetary Fact Sheets (surface gravity, equatorial for Jupiter).
@@ -51,13 +52,34 @@ DEFAULT_STEPS = tuple(float(10 ** (-k / 4)) for k in range(4, 17))
 
 
 def text(params: Mapping[str, str], name: str, default: str | None = None) -> str:
-    """The raw text of ``name``; missing (or empty) without a default is an error."""
+    """The raw text of ``name``; missing (or empty) without a default is an error. In a
+    Portuguese query (``lang=pt``) a decimal comma is a point (``3,5`` is 3.5), as the
+    messages write the examples; a list (``steps``, :func:`step_list`) keeps its commas."""
     raw = params.get(name)
     if raw is None or not str(raw).strip():
         if default is not None:
             return default
         raise InputError(name, "(missing)", ALLOWED.get(name, "a value"))
+    if words.safe_language(params) == "pt":
+        return _DECIMAL_COMMA.sub(".", str(raw))
     return str(raw)
+
+
+#: A comma between two digits: the decimal comma of Portuguese.
+_DECIMAL_COMMA = re.compile(r"(?<=\d),(?=\d)")
+
+
+def as_typed(exc: InputError, params: Mapping[str, str]) -> InputError:
+    """``exc`` with its value as the query typed it (``0,5``) where :func:`text` read a
+    Portuguese decimal comma as a point and the error shows the value read (``0.5``)."""
+    raw = params.get(exc.name)
+    if raw is None or words.safe_language(params) != "pt":
+        return exc
+    raw = str(raw).strip()
+    if _DECIMAL_COMMA.sub(".", raw) == raw or shown_value(exc.value) != inputs.shown(_DECIMAL_COMMA.sub(".", raw)):
+        return exc
+    return InputError(exc.name, inputs.shown(raw), exc.allowed, mentions=exc.mentions, alternative=exc.alternative,
+                      index=exc.index)
 
 
 def positive(params: Mapping[str, str], name: str, default: str | None = None) -> float:

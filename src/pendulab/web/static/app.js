@@ -56,6 +56,8 @@ function word(key, vars = {}) {
 
 /** A number's text as written in the page's language: a decimal comma in Portuguese. */
 const local = (text) => (lang === "pt" ? String(text).replace(/(\d)\.(?=\d)/g, "$1,") : String(text));
+/** A number as typed in the page's language, as the API and the URL read it: a Portuguese decimal comma is a point. */
+const typed = (text) => (lang === "pt" ? String(text).replace(/(\d),(?=\d)/g, "$1.") : String(text));
 /** x to `digits` significant digits (all of its shortest form without), in the page's language. */
 const num = (x, digits) => (x === null || x === undefined ? "–" : local(digits ? x.toPrecision(digits) : String(x)));
 /** A whole number with the language's thousands separator. */
@@ -100,7 +102,7 @@ function ensureOption(select, value) {
 function writeForm() {
   ensureOption($("method"), state.method);
   ensureOption($("method2"), state.method2);
-  for (const k of FIELDS) $(k).value = state[k];
+  for (const k of FIELDS) $(k).value = NUMBER_FIELDS.includes(k) ? local(state[k]) : state[k];
   $("speed").value = String(anim.speed);
   for (const k of ["exact", "scale", "errlog", "second", "plotkeys"]) $(k).checked = view[k];
   showProjector();
@@ -111,7 +113,7 @@ function writeForm() {
 }
 
 function readForm() {
-  for (const k of FIELDS) state[k] = $(k).value.trim();
+  for (const k of FIELDS) state[k] = NUMBER_FIELDS.includes(k) ? typed($(k).value.trim()) : $(k).value.trim();
   for (const k of ["exact", "scale", "errlog", "second", "plotkeys"]) view[k] = $(k).checked;
 }
 
@@ -295,7 +297,8 @@ function showError(err) {
   clearFieldErrors();
   let message = err && err.message ? err.message : word("page.unknown-error");
   const field = err && err.field && ERROR_FIELDS.includes(err.field) ? err.field : null;
-  if (field && /^\s*[+-]?\d+,\d+\s*$/.test($(field).value)) message += ` (${word("page.decimal-point", { text: $(field).value.trim().replace(",", ".") })})`;
+  // English reads 3,5 as no number (Portuguese as 3.5): say how to write it.
+  if (lang === "en" && field && /^\s*[+-]?\d+,\d+\s*$/.test($(field).value)) message += ` (${word("page.decimal-point", { text: $(field).value.trim().replace(",", ".") })})`;
   if (field) {
     // The message right under its field, and announced with it.
     const input = $(field), box = $(field + "-error");
@@ -1057,7 +1060,7 @@ function setupDrag() {
     const a = Math.abs(anim.drag);
     view.side = anim.drag < 0 ? -1 : 1;
     anim.drag = null;
-    $("amplitude").value = $("unit").value === "deg" ? String(Number((a * 180 / Math.PI).toFixed(1))) : String(Number(a.toFixed(4)));
+    $("amplitude").value = local($("unit").value === "deg" ? String(Number((a * 180 / Math.PI).toFixed(1))) : String(Number(a.toFixed(4))));
     syncSlider("amplitude");
     anim.t = 0;
     schedule(0);
@@ -1068,14 +1071,14 @@ function setupDrag() {
 
 // ---------- controls ----------
 function markPreset() {
-  const g = Number($("g").value);
+  const g = Number(typed($("g").value));
   for (const b of $("g-presets").children) b.classList.toggle("active", Number(b.dataset.g) === g);
   $("g-hint").hidden = $("g").value.trim() !== "";
 }
 
 function syncSlider(k) {
   const sl = $(k + "-slider");
-  const text = $(k).value.trim();
+  const text = typed($(k).value.trim());
   if (!PLAIN_NUMBER.test(text)) return;
   let x = Number(text);
   if (k === "amplitude" && $("unit").value === "rad") x = x * 180 / Math.PI;
@@ -1092,10 +1095,10 @@ function fromSlider(k) {
 function convertAmplitude() {
   // Convert the shown amplitude with the server's own reading of it (the last good answer).
   const now = $("unit").value, was = now === "deg" ? "rad" : "deg";
-  const text = $("amplitude").value.trim();
+  const text = typed($("amplitude").value.trim());
   const asSent = was === "deg" && PLAIN_NUMBER.test(text) ? text + "deg" : text;
   if (sims.a && asSent === sims.a.amplitudeQuery) {
-    $("amplitude").value = short(now === "deg" ? sims.a.input.amplitude_deg : sims.a.input.amplitude);
+    $("amplitude").value = local(short(now === "deg" ? sims.a.input.amplitude_deg : sims.a.input.amplitude));
   }
 }
 
@@ -1132,7 +1135,7 @@ async function init() {
     const b = document.createElement("button");
     b.type = "button"; b.dataset.g = g; b.textContent = word(`page.preset.${name}`);
     b.title = `g = ${local(g)} m/s²`;
-    b.addEventListener("click", () => { $("g").value = String(g); syncSlider("g"); schedule(0); });
+    b.addEventListener("click", () => { $("g").value = local(String(g)); syncSlider("g"); schedule(0); });
     $("g-presets").append(b);
   }
   for (const k of ERROR_FIELDS) { const d = $(k).getAttribute("aria-describedby"); if (d) $(k).dataset.hint = d; }
@@ -1142,7 +1145,7 @@ async function init() {
     $(k).addEventListener("input", () => { if (SLIDERS[k]) syncSlider(k); schedule(); });
   }
   for (const k of Object.keys(SLIDERS)) {
-    $(k + "-slider").addEventListener("input", () => { $(k).value = fromSlider(k); schedule(150); });
+    $(k + "-slider").addEventListener("input", () => { $(k).value = local(fromSlider(k)); schedule(150); });
   }
   for (const k of ["method", "method2"]) $(k).addEventListener("change", () => schedule(0));
   $("unit").addEventListener("change", () => { convertAmplitude(); syncSlider("amplitude"); schedule(0); });

@@ -2,7 +2,7 @@
 // and acceleration vectors, a ruler and a protractor to drag, damping, drag and mass, the
 // energies in J with the heat, and Planet X (a hidden g to find by timing).
 // Loaded after app.js; it reads app.js's globals (sims, anim, view, state, stateAt, draw, tick,
-// setPlaying, schedule, writeURL, word, local, short, rulerText, niceCeil, ERROR_FIELDS, $).
+// setPlaying, schedule, writeURL, word, local, typed, short, rulerText, niceCeil, ERROR_FIELDS, $).
 //
 // The photogates time the simulation's own data, never the frames drawn: the crossings of the
 // bottom are computed once per answer from the samples the server sent (the cubic Hermite
@@ -291,7 +291,7 @@ window.lab = (() => {
   function query(q, which) {
     if (which !== "second") {
       for (const k of FIELDS) {
-        const v = $(k).value.trim();
+        const v = typed($(k).value.trim());
         if (v !== "") q.set(k, v);
       }
     }
@@ -331,7 +331,7 @@ window.lab = (() => {
 
   function init() {
     const q = new URLSearchParams(location.search);
-    for (const k of FIELDS) $(k).value = q.get(k) || "";
+    for (const k of FIELDS) $(k).value = local(q.get(k) || "");
     for (const k of ["vectors", "ruler", "protractor"]) { lab.show[k] = q.get(k) === "1"; $("lab-" + k).checked = lab.show[k]; }
     const seed = q.get("planet");
     setPlanet(seed && /^[A-Za-z0-9]{1,12}$/.test(seed) ? seed : null);
