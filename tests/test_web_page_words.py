@@ -14,9 +14,9 @@ from importlib import resources
 from pathlib import Path
 
 import pytest
+from fastapi.testclient import TestClient
 from hypothesis import given, settings
 from hypothesis import strategies as st
-from fastapi.testclient import TestClient
 
 from pendulab.web import create_app
 
