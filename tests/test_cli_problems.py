@@ -4,7 +4,10 @@ import re
 import subprocess
 import sys
 
+import mpmath
 import pytest
+from hypothesis import HealthCheck, given, settings
+from hypothesis import strategies as st
 
 from conftest import assert_one_line_error
 from pendulab.jobs.problems import problem1, problem2
@@ -26,7 +29,8 @@ def test_gravity_json_and_units(cli):
     assert all(d["g"] == data["g"] and d["abs_error"] == data["abs_error"] for d in same)
     out = cli("gravity").out
     assert "significant digits guaranteed: 2" in out and "rule: x~ has n significant digits when" in out
-    assert f"|e_g| <= (4 pi^2 / T^2) dl + (8 pi^2 l / T^3) dT  = {lib.abs_error:.6e} m/s^2" in out
+    # the report's form of the bound: 4 digits rounded up (test_gravity_prints_only_right_digits)
+    assert "|e_g| <= (4 pi^2 / T^2) dl + (8 pi^2 l / T^3) dT  = 0.02736 m/s^2" in out
 
 
 def test_newton_json(cli):
@@ -123,6 +127,13 @@ def test_newton_prints_only_right_digits(cli, args):
         _right(alpha.group(2), root * 180 / mpmath.pi)
         # an estimate of |z - x_N|: C |x_N - x_(N-1)|^2 + delta, to its 2 digits
         _right(alpha.group(3), abs(mpmath.cot(root)) / 2 * d[-1] ** 2 + mpmath.mpf(data["rounding_level"]))
+        # the header: p = sqrt(g/l) of the decimal inputs, [a, b] in degrees and radians, x_0
+        p = re.search(r"p = sqrt\(g/l\) = (\S+)$", lines[0]).group(1)
+        _right(p, mpmath.sqrt(mpmath.mpf(G_TEXT) / mpmath.mpf(str(data["length"]))))
+        a, b, a_rad, b_rad = re.search(r"\[(\S+), (\S+)\] deg = \[(\S+), (\S+)\] rad", lines[1]).groups()
+        for deg, rad in ((a, a_rad), (b, b_rad)):
+            _right(rad, mpmath.mpf(deg) * mpmath.pi / 180)
+        _right(re.match(r"x0 = (\S+) ", lines[head - 1]).group(1), xs[0])
     assert any(cell.startswith("<= ") for row in rows for cell in row[2:3])  # f(x_N): rounding
     assert "0.336133" not in res.out and len(repr(data["q"][-1])) > len(rows[-3][3])  # --json: every digit
 
@@ -261,3 +272,69 @@ def test_quadrature_rate_sentence_states_the_observed_rate(cli, amplitude):
     assert rate == pytest.approx(math.log10(data["rows"][1]["error"] / data["rows"][2]["error"]))
     assert f"observed over the last two n here: {rate:.3f})" in data["rate_explanation"]
     assert (abs(rate - 0.5) < 0.01) == (amplitude == "4pi/5")
+
+
+def _bound(text, true):
+    """A bound rounded up: ``true <= printed <= true + 10^q``."""
+    from decimal import Decimal
+
+    import mpmath
+
+    with mpmath.workdps(50):
+        unit = mpmath.mpf(10) ** Decimal(text).as_tuple().exponent
+        slack = abs(true) * mpmath.mpf(10) ** -40  # 50-digit binary: an exact decimal bound is equal
+        assert true - slack <= mpmath.mpf(text) <= true + unit + slack, (text, mpmath.nstr(true, 20))
+
+
+def _decimal(lo, hi, places):
+    return st.integers(lo * 10**places, hi * 10**places).map(lambda k: f"{k / 10**places:.{places}f}")
+
+
+@settings(max_examples=40, deadline=None, suppress_health_check=[HealthCheck.function_scoped_fixture])
+@given(_decimal(1, 5, 3), st.integers(0, 99), _decimal(1, 5, 4), st.integers(0, 99))
+def test_gravity_prints_only_right_digits(cli, length, dl_percent, period, dt_percent):
+    """Every number of ``pendulab gravity`` against mpmath from the decimal inputs: g and the
+    box's range within one unit of their last digit, each bound rounded up (at least the true
+    one, by less than a unit), never a repr's 17th digit."""
+    import mpmath
+
+    with mpmath.workdps(50):
+        ell, t = mpmath.mpf(length), mpmath.mpf(period)
+        dl, dt = ell * dl_percent / 1000, t * dt_percent / 1000  # up to 10 %
+        dl_text, dt_text = mpmath.nstr(dl, 6), mpmath.nstr(dt, 6)
+        dl, dt = mpmath.mpf(dl_text), mpmath.mpf(dt_text)
+        res = cli("gravity", "--length", length, "--length-error", dl_text, "--period", period,
+                  "--period-error", dt_text)
+        assert res.code == 0, res.err
+        out = res.out
+        c = 4 * mpmath.pi ** 2
+
+        def gravity(a, b):
+            return c * a / b ** 2
+
+        g, g_min, g_max = gravity(ell, t), gravity(ell - dl, t + dt), gravity(ell + dl, t - dt)
+        first = c / t ** 2 * dl + 2 * c * ell / t ** 3 * dt
+        worst = max(g_max - g, g - g_min)
+        _right(re.search(r"= (\S+) m/s\^2\n", out).group(1), g)
+        _bound(re.search(r"dT  = (\S+) m/s\^2", out).group(1), first)
+        _bound(re.search(r"2 dT / T  = (\S+)\n", out).group(1), dl / ell + 2 * dt / t)
+        lo, hi, w = re.search(r"\[(\S+), (\S+)\]  \(worst error (\S+)\)", out).groups()
+        _right(lo, g_min)
+        _right(hi, g_max)
+        _bound(w, worst)
+        _bound(re.search(r"error <= (\S+)\)", out).group(1), max(first, worst))
+
+
+@pytest.mark.parametrize(("command", "pattern", "length", "alpha"), [
+    (["fit"], r"T\^ \(8\) = (\S+);", "3.5", mpmath.pi / 4),
+    (["quadrature"], r"T\^ \(8\) = (\S+) s", "3.5", 4 * mpmath.pi / 5),
+    (["estimate", "-l", "1", "-a", "2", "--step", "0.1"], r"T = (\S+) s;", "1", mpmath.mpf(2)),
+])
+def test_the_period_lines_print_only_right_digits(cli, command, pattern, length, alpha):
+    """T^ of (8) and the AGM period in the commands' first lines: within one unit of the last
+    printed digit of mpmath's period (a repr's 17th digit is not)."""
+    res = cli(*command)
+    assert res.code == 0, res.err
+    with mpmath.workdps(50):
+        true = 2 * mpmath.pi * mpmath.sqrt(mpmath.mpf(length) / mpmath.mpf(G_TEXT)) / mpmath.agm(1, mpmath.cos(alpha / 2))
+        _right(re.search(pattern, res.out).group(1), true)

@@ -184,7 +184,7 @@ def _plots():
 @json_option
 def estimate(length, amplitude, steps, t_max, method, dense, g, as_json):
     """The period from simulations (problem 3(c)-(d)): bracket, linear and cubic estimates."""
-    from ..core.digits import estimate_of
+    from ..core.digits import estimate_of, shown
     from ..numerics.crossing import estimate_periods
     from ..numerics.group import group_length
 
@@ -195,7 +195,7 @@ def estimate(length, amplitude, steps, t_max, method, dense, g, as_json):
         return
     rows, period = r.rows, r.period
     click.echo(f"l = {length!r} m, alpha = {float(amplitude)!r} rad, method {method}")
-    click.echo(f"period (AGM, (7)-(8))  T = {period!r} s; each estimate with the digits its error against T "
+    click.echo(f"period (AGM, (7)-(8))  T = {shown('t_hat', period)} s; each estimate with the digits its error against T "
                "leaves right (--json: every digit)")
     head = f"{'h':>8} {'bracket [t_j, t_j+1]':>25} {'linear':>18} {'cubic p(0)':>18} {'interp. err. est.':>17} {'|linear - T|':>12} {'|cubic - T|':>12} {'order':>6}"
     if dense:

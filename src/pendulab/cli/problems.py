@@ -7,7 +7,7 @@ from fractions import Fraction
 import click
 
 from ..core import cases, inputs
-from ..core.digits import shown
+from ..core.digits import shown, with_error
 from ..core.errors import InputError
 from ..numerics.newton import Condition, U
 from ..numerics.period import FIXED_ITERATIONS_ULPS
@@ -84,11 +84,14 @@ def gravity(length, length_error, period, period_error, as_json):
         emit_json(r.to_dict() | {"rule": rule, "abs_error_formula": abs_formula, "rel_error_formula": rel_formula})
         return
     click.echo(f"l = {r.length!r} +- {r.length_error!r} m,  T = {r.measured_period!r} +- {r.measured_period_error!r} s")
-    click.echo(f"g = 4 pi^2 l / T^2          = {r.g!r} m/s^2")
-    click.echo(f"absolute error (1st order)  {abs_formula}  = {r.abs_error:.6e} m/s^2")
-    click.echo(f"relative error (1st order)  {rel_formula}  = {r.rel_error:.6e}")
-    click.echo(f"exact range over the box    [{r.g_min!r}, {r.g_max!r}]  (worst error {r.worst_error:.6e})")
-    click.echo(f"significant digits guaranteed: {r.significant_digits}  (g = {r.g_text} m/s^2, error <= {r.error_bound:.3e})")
+    # The report's digits (pendulab.core.digits.POLICY): g and its range to 10 and 8 significant
+    # digits, the bounds rounded up to 4; --json keeps every double.
+    click.echo(f"g = 4 pi^2 l / T^2          = {shown('p1.g', r.g)} m/s^2")
+    click.echo(f"absolute error (1st order)  {abs_formula}  = {shown('p1.error_bound', r.abs_error)} m/s^2")
+    click.echo(f"relative error (1st order)  {rel_formula}  = {shown('p1.error_bound', r.rel_error)}")
+    click.echo(f"exact range over the box    [{shown('p1.g_range', r.g_min)}, {shown('p1.g_range', r.g_max)}]  "
+               f"(worst error {shown('p1.error_bound', r.worst_error)})")
+    click.echo(f"significant digits guaranteed: {r.significant_digits}  (g = {r.g_text} m/s^2, error <= {shown('p1.error_bound', r.error_bound)})")
     click.echo(f"rule: {rule}")
 
 
@@ -117,16 +120,16 @@ def newton(length, target, x0, g, as_json):
         emit_json(d)
         return
     e = r.equation
-    click.echo(f"f(alpha) = (2 pi/p)(1 + sin^2(alpha/2)/4) - {e.target!r},  p = sqrt(g/l) = {e.p!r}")
+    click.echo(f"f(alpha) = (2 pi/p)(1 + sin^2(alpha/2)/4) - {e.target!r},  p = sqrt(g/l) = {_rounded(e.p)}")
     # The report's digits (pendulab.core.digits): x_k to the rounding level delta, f(x_k) to the
     # rounding of its terms (2 u S), q_k to its rounding error; a value its error swamps as
     # "<= bound". --json keeps every double.
     delta, f_error = run.rounding_level, 2 * U * e.f_scale
     a, b = r.interval_deg
-    click.echo(f"interval [a, b] = [{a:g}, {b:g}] deg = [{chk.a!r}, {chk.b!r}] rad:")
+    click.echo(f"interval [a, b] = [{a:g}, {b:g}] deg = [{_rounded(chk.a)}, {_rounded(chk.b)}] rad:")
     for c in chk.conditions:
         click.echo(f"  [{'ok' if c.holds else 'FAILS'}] {condition_text(c)}")
-    click.echo(f"x0 = {r.x0!r} ({x0_rule}); {sentence('p2.criterion.' + run.criterion, tol=run.tol)}")
+    click.echo(f"x0 = {shown('p2.iterate', r.x0, delta)} ({x0_rule}); {sentence('p2.criterion.' + run.criterion, tol=run.tol)}")
     click.echo(f"{'k':>3} {'x_k (rad)':>22} {'f(x_k)':>12} {'q_k':>18} {'rounding of q_k':>16}")
     for k, x in enumerate(run.iterates):
         rho = shown("p2.relative_rounding", run.q_rounding[k]) if k < len(run.q_rounding) else ""
@@ -143,6 +146,12 @@ def newton(length, target, x0, g, as_json):
     deg = math.degrees(delta) + 2 * U * math.degrees(max(abs(r.x0), abs(r.alpha)))
     click.echo(f"alpha = {shown('p2.iterate', r.alpha, delta)} rad = {shown('p2.iterate', r.alpha_deg, deg)} deg  "
                f"(error estimate {shown('p2.error_estimate', run.error_estimate)} rad)")
+
+
+def _rounded(x: float) -> str:
+    """A double a few roundings from its decimal inputs (``sqrt(g/l)``, degrees in radians):
+    the digits its error, at most two ulps, leaves right (a repr's 17th digit is not)."""
+    return with_error(x, 2 * math.ulp(x))
 
 
 def _quotient(q: float | None, rho: float) -> str:
@@ -193,7 +202,7 @@ def fit(length, amplitude, step, t_max, decimals, plot, g, as_json):
     if as_json:
         emit_json(r.to_dict() | {"answer": answer})
         return
-    click.echo(f"l = {r.length!r}, alpha = {r.amplitude!r}, h = {r.step!r}; T^ (8) = {r.t_hat!r}; "
+    click.echo(f"l = {r.length!r}, alpha = {r.amplitude!r}, h = {r.step!r}; T^ (8) = {shown('t_hat', r.t_hat)}; "
                f"t_max = {r.t_max:g} ({sentence('p4.t_max.' + r.t_max_rule, t_hat=r.t_hat)}); {r.points} points")
     click.echo("last 10 points (t_j, z1_j):")
     for t, y in r.last_points.tolist():
@@ -245,7 +254,7 @@ def quadrature(length, amplitude, ns, substitution, graded, g, as_json):
     if as_json:
         emit_json(r.to_dict() | {"t_hat_note": t_hat_note(r), "answer_5a": answer_5a, "rate_explanation": rate_text})
         return
-    click.echo(f"l = {r.length!r}, alpha = {r.amplitude!r}; T^ (8) = {r.t_hat!r} s")
+    click.echo(f"l = {r.length!r}, alpha = {r.amplitude!r}; T^ (8) = {shown('t_hat', r.t_hat)} s")
     if (note := t_hat_note(r)) is not None:
         click.echo(note)
     # Each error column names its reference: T^ of (8), or T, the correctly rounded period.
