@@ -1,14 +1,23 @@
 """Period approximations against independent mpmath evaluations and the papers' own claims."""
 import json
 import math
+import re
 
 import mpmath
 import numpy as np
 import pytest
+from hypothesis import given, settings
+from hypothesis import strategies as st
 
 from pendulab.cli import main
 from pendulab.core.errors import InputError
-from pendulab.numerics.approximations import FORMULAS, approximate_period, approximation_errors
+from pendulab.numerics.approximations import (
+    FORMULAS,
+    TABLE_DEGREES,
+    approximate_period,
+    approximation_errors,
+    rounding_error,
+)
 from reference import G
 
 # Each formula's T/T0 written again in mpmath, straight from the cited papers.
@@ -128,3 +137,41 @@ def test_period_ratio_is_the_agm_period_over_the_small_angle_one():
         with mpmath.workdps(30):
             ref = 2 * mpmath.ellipk(mpmath.sin(mpmath.mpf(a) / 2) ** 2) / mpmath.pi
         assert r == pytest.approx(float(ref), rel=4e-16)
+
+
+def _printed_right(text: str, ref: float) -> bool:
+    """``text`` within one unit of its last digit of ``ref``, or ``<= b`` with ``|ref| <= b``."""
+    from pendulab.core import digits
+
+    if text.startswith("<= "):
+        return abs(ref) <= float(text[3:])
+    mant, exp = digits.split(text)
+    place = (exp or 0) - (len(mant.split(".")[1]) if "." in mant else 0)
+    with mpmath.workdps(40):
+        return abs(mpmath.mpf(text) - mpmath.mpf(ref)) <= mpmath.mpf(10) ** place
+
+
+@settings(max_examples=300, deadline=None)
+@given(st.sampled_from(list(FORMULAS)), st.floats(min_value=1e-3, max_value=math.radians(179.999)))
+def test_the_tables_digits_are_right_at_every_amplitude(name, alpha):
+    """``pendulab approximations`` prints ``T_approx/T - 1`` to at most 4 significant digits and
+    the digits :func:`rounding_error` leaves: right against mpmath's K at any amplitude."""
+    from pendulab.core.digits import with_error
+
+    r = float(approximation_errors([alpha], [name]).errors[name][0])
+    text = with_error(r, rounding_error(r), 4)
+    assert _printed_right(text, mp_rel_error(name, alpha)), (name, math.degrees(alpha), text)
+
+
+def test_the_table_prints_what_it_claims(capsys):
+    """Each cell of the printed table is the digits rule above at the table's amplitudes
+    (agm2 at 60 deg: -4e-14, where 4 digits would print the rounding, -4.363e-14; true -4.354e-14)."""
+    assert main(["approximations"]) == 0
+    lines = capsys.readouterr().out.splitlines()
+    names = lines[1].split()[2:]
+    rows = [re.findall(r"<= \S+|\S+", line) for line in lines[2:2 + len(TABLE_DEGREES)]]
+    for row, deg in zip(rows, TABLE_DEGREES):
+        assert float(row[0]) == deg
+        for name, text in zip(names, row[1:]):
+            assert _printed_right(text, mp_rel_error(name, math.radians(deg))), (name, deg, text)
+    assert rows[TABLE_DEGREES.index(60)][1 + names.index("agm2")] == "-4e-14"

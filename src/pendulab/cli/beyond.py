@@ -63,7 +63,8 @@ def approximations(plot, as_json):
     Small angle, the coursework's (9), Kidd-Fogg, Lima-Arun, Ganley, and the AGM
     truncated after 1, 2, 3 iterations (Carvalhaes-Suppes).
     """
-    from ..numerics.approximations import REACH_TOLERANCES, approximation_errors, approximation_table
+    from ..core.digits import with_error
+    from ..numerics.approximations import REACH_TOLERANCES, approximation_errors, approximation_table, rounding_error
 
     if plot:
         check_plot_path("plot", plot)
@@ -80,7 +81,9 @@ def approximations(plot, as_json):
     click.echo("relative error T_approx/T - 1 (T: AGM to convergence)")
     click.echo(f"{'alpha (deg)':>11} " + " ".join(f"{n:>12}" for n in names))
     for i, deg in enumerate(table.amplitudes_deg):
-        click.echo(f"{deg:>11g} " + " ".join(f"{f.relative_errors[i]:>12.3e}" for f in table.formulas))
+        # at most 4 significant digits, and only those its rounding leaves (<= 4e-15 where it swamps)
+        click.echo(f"{deg:>11g} " + " ".join(f"{with_error(r, rounding_error(r), 4):>12}"
+                                             for r in (float(f.relative_errors[i]) for f in table.formulas)))
     click.echo("")
     click.echo("largest amplitude (deg) up to which |error| stays within")
     click.echo(f"{'formula':>12} " + " ".join(f"{t:>8g}" for t in REACH_TOLERANCES))
