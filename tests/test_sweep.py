@@ -135,6 +135,28 @@ def test_cli_sweep(tmp_path, capsys):
     assert pq.read_table(out).num_rows == 36 and plot.read_bytes().startswith(b"\x89PNG")
 
 
+def test_the_sweep_table_prints_only_right_digits(tmp_path, capsys):
+    """rk4 at h = 1e-4, errors near 1e-13: the printed largest |T_cubic - T| and relative
+    error within one unit of their last digit of the true ones (mpmath's period of each
+    pendulum), which the doubles' half ulp moves by up to 9 units of a 4th digit."""
+    out = tmp_path / "s.csv"
+    assert main(["sweep", "--amplitude", "0.1:3:7", "--step", "1e-3,1e-4", "--method", "rk4",
+                 "--output", str(out)]) == 0
+    lines = capsys.readouterr().out.splitlines()[1:3]
+    rows = pacsv.read_csv(out).to_pydict()
+    with mpmath.workdps(40):
+        for line, h in zip(lines, (1e-3, 1e-4)):
+            cells = line.split()
+            assert float(cells[1]) == h
+            mine = [i for i, step in enumerate(rows["step"]) if step == h]
+            true = [2 * mpmath.pi * mpmath.sqrt(1 / mpmath.mpf("9.80665")) / mpmath.agm(1, mpmath.cos(mpmath.mpf(rows["amplitude"][i]) / 2))
+                    for i in mine]
+            err = [abs(mpmath.mpf(rows["cubic"][i]) - t) for i, t in zip(mine, true)]
+            for text, want in ((cells[3], max(err)), (cells[4], max(e / t for e, t in zip(err, true)))):
+                place = int(text.split("e")[1]) - len(text.split("e")[0].split(".")[1])
+                assert abs(mpmath.mpf(text) - want) <= mpmath.mpf(10) ** place, (text, mpmath.nstr(want, 8))
+
+
 def test_plot_draws_one_line_per_method_and_step():
     """What sweep_errors draws: for each (method, step), the found pendulums' |cubic error|
     against the amplitude in degrees, floored at 1e-17 for the log scale."""
