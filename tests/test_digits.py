@@ -114,6 +114,22 @@ def test_an_estimate_of_a_rounded_reference_prints_only_right_digits(reference, 
         assert abs(value(text) - truth) <= Fraction(10) ** last_place(text)
 
 
+@given(st.floats(min_value=1e-3, max_value=1e3), st.floats(min_value=-0.5, max_value=0.5),
+       st.integers(0, 16), st.fractions(min_value=-1, max_value=1))
+def test_a_distance_to_a_rounded_reference_prints_only_right_digits(reference, off, digits_right, where):
+    """``distance_of(x, T)``: ``|x - true|`` for any truth within T's half ulp, within one unit
+    of the printed last place (a bound ``<= b`` at least it)."""
+    x = reference * (1 + off * 10.0 ** -digits_right)
+    text = digits.distance_of(x, reference)
+    truth = abs(Fraction(x) - (Fraction(reference) + where * Fraction(math.ulp(reference)) / 2))
+    if text.startswith("<= "):
+        assert truth <= value(text[3:])
+    else:
+        assert abs(value(text) - truth) <= Fraction(10) ** last_place(text)
+        shown = digits.split(text)[0].replace(".", "").replace("-", "").lstrip("0")
+        assert len(shown) <= 4 or shown.rstrip("0") == "1"  # 4 digits; a carry to 10^k adds its zero
+
+
 def test_the_issues_numbers():
     """x_0 = 60 degrees from its radians, and the 3(d) coefficient of issue 32."""
     x0 = math.degrees(math.radians(60))

@@ -217,8 +217,9 @@ def test_degrees_are_deg_everywhere(published):
 def test_each_error_name_has_one_meaning(published):
     # |linear - period| (PeriodEstimate); the sweep's signed error and the key's error
     # against T^ are other quantities with names of their own.
-    assert published["linear_error"] == {"PeriodEstimate", "estimate"}
-    assert published["cubic_error"] == {"PeriodEstimate", "estimate"}
+    # EstimateShown: the same quantity as the explorer prints it (its right digits, a text).
+    assert published["linear_error"] == {"PeriodEstimate", "estimate", "EstimateShown"}
+    assert published["cubic_error"] == {"PeriodEstimate", "estimate", "EstimateShown"}
     assert {"linear_signed_error", "cubic_signed_error"} <= sweep_columns()
     assert {"linear_t_hat_error", "cubic_t_hat_error"} <= published.keys()
 

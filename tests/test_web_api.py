@@ -96,7 +96,7 @@ def test_simulate_reproduces_figure3(client):
 
 
 @pytest.mark.parametrize(("method", "step"), [("taylor2", 0.1), ("taylor2", 1e-3), ("rk4", 0.05), ("verlet", 0.05),
-                                            ("taylor:8", 0.02)])
+                                            ("taylor:8", 0.02), ("rk4", 1e-4)])  # rk4 at 1e-4: errors near T's ulp
 def test_the_estimates_shown_carry_only_right_digits(client, method, step):
     """The page prints ``shown``: each of its digits right against mpmath's period (within one
     unit of the last place), and one digit fewer than the double where the error is visible."""
@@ -113,6 +113,14 @@ def test_the_estimates_shown_carry_only_right_digits(client, method, step):
         assert abs(mpmath.mpf(text) - truth) <= mpmath.mpf(10) ** place, (k, text, e[k])
         assert abs(e[k] - float(truth)) > 0.5 * 10.0 ** (place - 1), (k, text, e[k])  # not one digit more
         assert len(mant.replace(".", "").lstrip("0")) < 16  # not the double's 16-17 digits
+        for suffix, scale in (("_error", 1), ("_relative", truth)):  # |x - T|, |x - T|/T against the truth
+            shown, want = e["shown"][k + suffix], abs(mpmath.mpf(e[k]) - truth) / scale
+            if shown.startswith("<= "):
+                assert want <= mpmath.mpf(shown[3:]), (k, suffix, shown)
+            else:
+                m, x = digits.split(shown)
+                unit = mpmath.mpf(10) ** ((x or 0) - (len(m.split(".")[1]) if "." in m else 0))
+                assert abs(mpmath.mpf(shown) - want) <= unit, (k, suffix, shown, mpmath.nstr(want, 6))
 
 
 def test_simulate_estimates_are_the_librarys(client):

@@ -284,6 +284,9 @@ def test_the_page_prints_only_the_estimates_right_digits(browser, server, lang):
         assert pg.locator("#est-cubic").text_content() == local(e["shown"]["cubic"])
         assert pg.locator("#est-linear").text_content() == local(e["shown"]["linear"])
         assert pg.locator("#strip-estimate").text_content() == local(e["shown"]["cubic"]) + " s"
+        for k in ("linear", "cubic"):  # the errors too: 3 digits at most, those the period's half ulp leaves
+            assert pg.locator(f"#err-{k}").text_content() == local(e["shown"][f"{k}_error"])
+            assert pg.locator(f"#rel-{k}").text_content() == local(e["shown"][f"{k}_relative"])
         assert len(re.sub(r"\D", "", pg.locator("#period-agm").text_content())) == 12
         assert _errors(pg) == []
     finally:

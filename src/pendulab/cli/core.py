@@ -1,6 +1,7 @@
 """Commands of the foundation: ``period``, ``simulate``, ``estimate``, ``length``."""
 from __future__ import annotations
 
+import math
 import os
 
 import click
@@ -184,7 +185,7 @@ def _plots():
 @json_option
 def estimate(length, amplitude, steps, t_max, method, dense, g, as_json):
     """The period from simulations (problem 3(c)-(d)): bracket, linear and cubic estimates."""
-    from ..core.digits import estimate_of, shown
+    from ..core.digits import distance_of, estimate_of, shown
     from ..numerics.crossing import estimate_periods
     from ..numerics.group import group_length
 
@@ -208,9 +209,11 @@ def estimate(length, amplitude, steps, t_max, method, dense, g, as_json):
     def right(x: float) -> str:
         return estimate_of(x, period)
 
+    prev: tuple[float, float] | None = None
     for e, co in zip(rows, r.cubic_orders):
         br = f"[{e.bracket[0]:.10g}, {e.bracket[1]:.10g}]"
-        order = f"{co:6.2f}" if co is not None else f"{'':>6}"
+        order = f"{'':>6}" if co is None or prev is None else f"{_order(co, prev, (e.step, e.cubic_error), period):>6}"
+        prev = (e.step, e.cubic_error)
         # An estimate below the rounding level of t_k = k h is rounding, not interpolation error.
         est = f"{e.cubic_error_estimate:.3e}"
         if not e.interpolation.error_estimate_resolved:
@@ -219,15 +222,28 @@ def estimate(length, amplitude, steps, t_max, method, dense, g, as_json):
         if not e.cubic_in_bracket:  # no estimate of the period: flagged, not hidden
             cubic, outside = cubic + "!", True
         line = (f"{e.step:>8g} {br:>25} {right(e.linear):>18} {cubic:>18} {est:>17} "
-                f"{e.linear_error:>12.3e} {e.cubic_error:>12.3e} {order}")
+                f"{distance_of(e.linear, period):>12} {distance_of(e.cubic, period):>12} {order}")
         if dense:
-            line += f" {right(e.dense):>18} {e.dense_error:>12.3e}"
+            line += f" {right(e.dense):>18} {distance_of(e.dense, period):>12}"
         click.echo(line)
     if below:
         click.echo("* below the rounding level of t_k = k h: the estimate there is rounding, not interpolation error")
     if outside:
         click.echo("! outside its bracket [t_j, t_j+1], where theta' changes sign: the step is too large for this "
                    "amplitude and the cubic estimates nothing (--json: cubic_in_bracket false)")
+
+
+def _order(order: float, before: tuple[float, float], now: tuple[float, float], period: float) -> str:
+    """The observed order ``log(e_0/e_1)/log(h_0/h_1)`` with the digits the errors' rounding
+    (``period``'s half ulp each) leaves, 2 decimals at most; ``noise`` where it leaves none."""
+    from ..core.digits import with_error
+
+    half = math.ulp(period) / 2
+    (h0, e0), (h1, e1) = before, now
+    error = ((half + math.ulp(e0)) / e0 + (half + math.ulp(e1)) / e1) / math.log(10) / abs(math.log10(h0 / h1))
+    if not error < 0.5:
+        return "noise"
+    return with_error(order, error) if error > 0.005 else f"{order:.2f}"
 
 
 @click.command()

@@ -18,7 +18,7 @@ import math
 from dataclasses import dataclass
 from decimal import ROUND_CEILING, ROUND_HALF_EVEN, Context, Decimal
 
-__all__ = ["FORMS", "ORDER_ONE", "POLICY", "Form", "bound", "estimate_of", "fixed", "noise_bound", "place", "rounding_noise", "scientific",
+__all__ = ["FORMS", "ORDER_ONE", "POLICY", "Form", "bound", "distance_of", "estimate_of", "fixed", "noise_bound", "place", "rounding_noise", "scientific",
            "shown", "significant", "split", "with_error"]
 
 #: The kinds of form: ``fixed`` (``digits`` decimals, the tables' columns), ``significant``
@@ -207,6 +207,14 @@ def estimate_of(x: float, reference: float) -> str:
     AGM period), with the digits its error leaves right (:func:`with_error`): the error is
     ``|x - reference|`` plus ``reference``'s own half ulp, which bounds ``|x - true|``."""
     return with_error(x, abs(x - reference) + math.ulp(reference) / 2)
+
+
+def distance_of(x: float, reference: float, most: int = 4) -> str:
+    """``|x - true|``, ``reference`` the correctly rounded double of the true value (the AGM
+    period): at most ``most`` significant digits and those ``reference``'s half ulp leaves
+    (an error near 1e-15 against a period of 2 s has none: ``<= 2e-15``)."""
+    d = abs(x - reference)
+    return with_error(d, math.ulp(reference) / 2 + math.ulp(d), most)
 
 
 def noise_bound(x: float, error: float) -> str:

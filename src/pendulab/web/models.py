@@ -70,6 +70,10 @@ class EstimateErrors(_Model):
 class EstimateShown(_Model):
     linear: str | None
     cubic: str | None
+    linear_error: str | None
+    cubic_error: str | None
+    linear_relative: str | None
+    cubic_relative: str | None
 
 
 class Estimate(_Model):
@@ -83,7 +87,9 @@ class Estimate(_Model):
     cubic_error_estimate: float | None
     errors: EstimateErrors = Field(description="absolute errors against the AGM period, s")
     shown: EstimateShown = Field(description="linear and cubic with only the digits their errors against the AGM "
-                                             "period leave right (pendulab.core.digits.estimate_of), as the page prints them")
+                                             "period leave right (pendulab.core.digits.estimate_of), and their absolute and "
+                                             "relative errors to 3 digits and those the period's half ulp leaves, as the "
+                                             "page prints them")
     period: float = Field(description="the AGM period (converged), s")
 
 

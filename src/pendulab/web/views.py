@@ -21,7 +21,7 @@ from pydantic import BaseModel
 from ..core import inputs
 from ..core import validate as v
 from ..core.cases import PROBLEM5, G
-from ..core.digits import estimate_of
+from ..core.digits import distance_of, estimate_of, with_error
 from ..core.errors import InputError
 from ..core.methods import Status, resolve
 from . import limits, models, parameters, sampling, words
@@ -85,8 +85,15 @@ def estimate_view(length: float, amplitude: float, step: float, g: float, method
     e = s.estimate.to_dict()
     mid = 0.5 * (e["bracket"][0] + e["bracket"][1])
     errors = {"bracket_mid": abs(mid - e["period"]), "linear": _num(e["linear_error"]), "cubic": _num(e["cubic_error"])}
-    shown = {k: estimate_of(x, e["period"]) if x is not None and math.isfinite(x) else None
-             for k, x in (("linear", e["linear"]), ("cubic", e["cubic"]))}
+    shown: dict[str, str | None] = {}
+    for k in ("linear", "cubic"):
+        x, t = e[k], e["period"]
+        ok = x is not None and math.isfinite(x)
+        shown[k] = estimate_of(x, t) if ok else None
+        # the error and the relative error to 3 digits at most, and those T's half ulp leaves
+        shown[f"{k}_error"] = distance_of(x, t, 3) if ok else None
+        shown[f"{k}_relative"] = (with_error(abs(x - t) / t, (math.ulp(t) / 2 + math.ulp(abs(x - t))) / t
+                                             + math.ulp(abs(x - t) / t), 3) if ok else None)
     return {"estimate": _answer(models.Estimate, e) | {"bracket_mid": mid, "errors": errors, "shown": shown},
             "status": "found", "reason": None}
 

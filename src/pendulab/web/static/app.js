@@ -328,7 +328,7 @@ const sci = (x) => (x === null || x === undefined ? "–" : x === 0 ? "0" : loca
 const short = (x) => String(Number(x.toPrecision(12)));
 const shown = (x) => local(short(x));
 const label = (s) => word("page.run", { method: s.input.method, h: shown(s.input.step) });
-/** An estimate's linear or cubic with only the digits its error against the AGM period leaves right (the server's `shown`). */
+/** An estimate's linear or cubic (or its error, `cubic_error`, `cubic_relative`) with only the digits that are right (the server's `shown`). */
 const right = (e, k) => (e.shown[k] === null ? "–" : local(e.shown[k].replace("<= ", "≤ ")));
 
 function renderFlags() {
@@ -379,8 +379,8 @@ function tableFor(s, suffix) {
     if (e) {
       const err = k === "bracket" ? e.errors.bracket_mid : e.errors[k];
       cells[0] = k === "bracket" ? `[${shown(e.bracket[0])}${lang === "pt" ? ";" : ","} ${shown(e.bracket[1])}]` : right(e, k);
-      cells[1] = sci(err);
-      cells[2] = err === null ? "–" : sci(err / p.period);
+      cells[1] = k === "bracket" ? sci(err) : right(e, k + "_error");
+      cells[2] = k === "bracket" ? sci(err / p.period) : right(e, k + "_relative");
     }
     const first = document.createElement("td");
     first.textContent = name;
