@@ -201,6 +201,15 @@ def test_stalled_connections_cannot_lock_others_out():
             s.close()
 
 
+def test_one_address_gets_half_the_connections_by_default():
+    # 256 of 512 (a class of 30 browsers holds 180); half of fewer under a low ulimit -n.
+    assert server.per_address_cap(512) == 256 == server.MAX_PER_CLIENT
+    assert server.per_address_cap(57) == 28 and server.per_address_cap(4) == 2 and server.per_address_cap(1) == 1
+    assert server.protocol(max_connections=100).max_per_client == 50
+    assert server.protocol(max_connections=512).max_per_client == 256
+    assert server.protocol(max_connections=100, max_per_client=512).max_per_client == 512  # --per-address N as given
+
+
 def test_descriptor_limit_keeps_the_log_quiet_and_the_server_answering():
     # 200 connections with half a request line against a server limited to 128 descriptors.
     with serve_in_child(descriptors=128) as base:

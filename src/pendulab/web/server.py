@@ -15,10 +15,11 @@ descriptors until none is left. :class:`GuardedH11` bounds that:
   ``timeout_keep_alive``);
 - **connection cap**: at most :func:`connection_cap` connections, below the process's
   descriptor limit less a batch of accepts (:func:`accept_batch`), and at most
-  :data:`MAX_PER_CLIENT` from one address; a new one past either cap closes the oldest
-  connection (of that address, for its cap) still waiting for its headers or body, or is
-  itself closed when every such connection is busy. A client that opens hundreds of
-  connections and trickles bytes into them holds its own places only.
+  :func:`per_address_cap` from one address (a classroom behind one NAT address shares
+  them); a new one past either cap closes the oldest connection (of that address, for its
+  cap) still waiting for its headers or body, or is itself closed when every such
+  connection is busy. A client that opens hundreds of connections and trickles bytes into
+  them holds its own places only.
 
 An accept that still fails for want of descriptors is logged once a minute in one line
 (:func:`quiet_accept_errors`); asyncio alone logs a traceback per attempt, thousands a
@@ -40,8 +41,11 @@ from uvicorn.protocols.http.h11_impl import H11Protocol
 HEADER_TIMEOUT = 10.0
 #: Seconds a request's body may take once its headers are in.
 BODY_TIMEOUT = 10.0
-#: At most this many connections from one address (a browser opens 6 per server).
-MAX_PER_CLIENT = 32
+#: At most this many connections from one address by default (``pendulab serve --per-address``):
+#: half of :data:`MAX_CONNECTIONS`. A browser opens up to 6 per server and keeps them alive
+#: (5 s here) after a page load, so a class of 30 behind one NAT address holds 180 at once:
+#: 256 fits 42 such browsers, and leaves the other half of the places to every other address.
+MAX_PER_CLIENT = 256
 #: Seconds a client may read nothing of an answer before it is dropped.
 STALL_TIMEOUT = 30.0
 #: At most this many connections, whatever the descriptor limit.
@@ -80,6 +84,12 @@ def connection_cap(most: int = MAX_CONNECTIONS) -> int:
     """Connections allowed: ``most``, fewer where the descriptor limit (``ulimit -n``) is low."""
     free = _descriptors_free()
     return most if free is None else max(4, min(most, free - accept_batch()))
+
+
+def per_address_cap(connections: int) -> int:
+    """Connections one address may hold by default, of ``connections`` in all: half of them,
+    at most :data:`MAX_PER_CLIENT` (256 of 512; fewer where a low ``ulimit -n`` allows fewer)."""
+    return max(1, min(MAX_PER_CLIENT, connections // 2))
 
 
 class GuardedH11(H11Protocol):
@@ -203,12 +213,17 @@ class GuardedH11(H11Protocol):
 
 def protocol(header_timeout: float = HEADER_TIMEOUT, stall_timeout: float = STALL_TIMEOUT,
              max_connections: int | None = None, body_timeout: float = BODY_TIMEOUT,
-             max_per_client: int = MAX_PER_CLIENT) -> type[GuardedH11]:
-    """A :class:`GuardedH11` with these limits and its own lists of waiting connections and clients."""
+             max_per_client: int | None = None) -> type[GuardedH11]:
+    """A :class:`GuardedH11` with these limits and its own lists of waiting connections and clients.
+
+    ``max_connections``: :func:`connection_cap` when None; ``max_per_client`` (connections
+    from one address): :func:`per_address_cap` of those when None.
+    """
+    most = connection_cap() if max_connections is None else max_connections
     return type("GuardedH11", (GuardedH11,), {
         "header_timeout": header_timeout, "stall_timeout": stall_timeout, "body_timeout": body_timeout,
-        "max_connections": connection_cap() if max_connections is None else max_connections,
-        "max_per_client": max_per_client, "waiting": {}, "by_client": {},
+        "max_connections": most, "max_per_client": per_address_cap(most) if max_per_client is None else max_per_client,
+        "waiting": {}, "by_client": {},
     })
 
 
