@@ -44,15 +44,16 @@ def _descriptors(limit: int) -> Callable[[], None]:
 
 
 @contextlib.contextmanager
-def serve_in_child(timeout: float = 60.0, descriptors: int | None = None) -> Iterator[Served]:
-    """Start the real ``pendulab serve --port N``; yield ``http://127.0.0.1:N``; stop it.
+def serve_in_child(timeout: float = 60.0, descriptors: int | None = None,
+                   args: tuple[str, ...] = ()) -> Iterator[Served]:
+    """Start the real ``pendulab serve --port N`` (and ``args``); yield ``http://127.0.0.1:N``; stop it.
 
     ``descriptors``: the child's limit on open files (``ulimit -n``). Waits until
     ``/api/config`` answers. Raises ``RuntimeError`` with the server's output when it
     exits or does not answer within ``timeout`` seconds.
     """
     port = free_port()
-    cmd = [sys.executable, "-m", "pendulab", "serve", "--port", str(port)]
+    cmd = [sys.executable, "-m", "pendulab", "serve", "--port", str(port), *args]
     base = f"http://127.0.0.1:{port}"
     with tempfile.TemporaryFile("w+") as log:
         proc = subprocess.Popen(cmd, stdout=log, stderr=subprocess.STDOUT,

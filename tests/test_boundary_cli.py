@@ -29,6 +29,7 @@ from hypothesis import strategies as st
 
 from hostile import HOSTILE
 from pendulab.cli import COMMANDS, LazyGroup, main
+from served import free_port
 
 #: Light values for the other options, so a hostile value that happens to be valid runs fast.
 BASE = {
@@ -196,6 +197,35 @@ def test_both_ends_of_every_integer_range_run(sandbox, command, option, bound):
     assert len(integer_ranges()) >= 8  # period --iterations/--digits, simulate --digits, serve --port
     code, err = run_in_process([command, *BASE[command], option, str(bound)])
     assert code == 0, (command, option, bound, err)
+
+
+@settings(max_examples=60, deadline=30_000,
+          suppress_health_check=[HealthCheck.function_scoped_fixture, HealthCheck.too_slow])
+@given(n=st.one_of(st.integers(-3, 515), st.integers(-10**12, 10**12), st.sampled_from([0, 1, 512, 513])))
+def test_serve_per_address_takes_1_to_512_and_hands_it_to_the_server(sandbox, n):
+    import pendulab.web.server
+
+    ran: dict = {}
+    with pytest.MonkeyPatch.context() as mp:
+        mp.setattr(pendulab.web.server, "run", lambda *a, **k: ran.update(k))
+        code, err = run_in_process(["serve", "--port", str(free_port()), "--per-address", str(n)])
+    if 1 <= n <= pendulab.web.server.MAX_CONNECTIONS:
+        assert code == 0 and ran["max_per_client"] == n, (n, err)
+    else:  # one line naming the option, the value as typed and the range; the server never starts
+        assert code == 2 and not ran, (n, err)
+        assert err == f"pendulab serve: error: --per-address = {n} is not allowed: must be an integer in [1, 512]\n"
+
+
+def test_serve_without_per_address_leaves_the_servers_default(sandbox):
+    import pendulab.web.server
+    from pendulab.cli import serve as serve_cmd
+
+    ran: dict = {}
+    with pytest.MonkeyPatch.context() as mp:
+        mp.setattr(pendulab.web.server, "run", lambda *a, **k: ran.update(k))
+        code, err = run_in_process(["serve", "--port", str(free_port())])
+    assert code == 0 and ran["max_per_client"] is None, err  # the protocol's per_address_cap
+    assert serve_cmd._MOST_PER_ADDRESS == pendulab.web.server.MAX_CONNECTIONS
 
 
 @settings(max_examples=40, deadline=30_000,

@@ -14,6 +14,9 @@ from ._common import integer
 
 #: Ports tried after a busy one, to suggest a free one.
 _PORTS_TRIED = 50
+#: ``--per-address`` at most: the server's connections in all (``web.server.MAX_CONNECTIONS``,
+#: not imported here: the server's module imports uvicorn).
+_MOST_PER_ADDRESS = 512
 
 
 def _bind(host: str, port: int) -> None:
@@ -112,7 +115,12 @@ EXPOSED = ("note: other computers on the network can open this explorer (there i
 @click.option("--allow-host", multiple=True, metavar="NAME",
               help="Another host name the page may be opened at (such as mybox.local); repeatable. "
                    "Requests naming any other host are refused.")
-def serve(port: int, host: str, allow_host: tuple[str, ...]) -> None:
+@click.option("--per-address", type=integer(1, _MOST_PER_ADDRESS), default=None, metavar="N",
+              show_default="256, half the server's 512 connections; fewer under a low ulimit -n",
+              help="Connections one address may hold at once. A class behind one NAT address shares them "
+                   "(30 browsers hold about 180); past them a new connection closes that address's oldest "
+                   "one still sending its request.")
+def serve(port: int, host: str, allow_host: tuple[str, ...], per_address: int | None) -> None:
     """Start the web explorer: simulate, animate and plot the pendulum in the browser."""
     from ..core.extras import require
 
@@ -152,4 +160,4 @@ def serve(port: int, host: str, allow_host: tuple[str, ...]) -> None:
     # A Ctrl+C that came while the imports ran in a callback (interrupt.unraisable) ends the
     # command here; from the server's start, uvicorn's own handler holds it.
     check_signals()
-    run(app, host, port, before=check_signals)
+    run(app, host, port, before=check_signals, max_per_client=per_address)
