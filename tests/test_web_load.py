@@ -1,4 +1,6 @@
-"""A small load check: 200 concurrent API requests on loopback, all answered correctly.
+"""A small load check: 200 concurrent API requests on loopback, all answered correctly;
+a class behind one address (30 browsers: page loads, then a change, all at once) answered
+in full, also beside one address that holds hundreds of stalled connections.
 
 The server is the real command (``pendulab serve``) in a subprocess; the requests go
 out at once over 200 connections. Bounded: every request and the whole run time out.
@@ -9,12 +11,17 @@ from __future__ import annotations
 import asyncio
 import contextlib
 import math
+import select
+import socket
 import time
 
 import httpx
 import pytest
 
+from pendulab.web import server as web_server
 from reference import ellipk_period
+from served import serve_in_child
+from test_web_server import closed_by_server, uvicorn_in_thread
 
 N_REQUESTS = 200
 
@@ -33,8 +40,8 @@ def requests() -> list[tuple[dict, float | None]]:
     return out
 
 
-#: Connections from one address: a class's requests come from many (the server holds at most
-#: ``web.server.MAX_PER_CLIENT`` of one), so the tests spread theirs over loopback addresses.
+#: Connections from one address: the 200 requests come from many here (a class behind one
+#: address: test_a_class_behind_one_address_gets_every_answer).
 PER_ADDRESS = 16
 
 
@@ -131,3 +138,121 @@ def test_the_page_answers_while_heavy_simulations_are_in_flight(server):
     # answered while the heavy ones were still in flight (a stalled server answers after them)
     assert done_then < n_heavy
     assert all(r.status_code == 200 and r.json()["n_steps"] == 5_000_000 for r in answers)
+
+
+# ------------------------------------------------------------------ a class behind one address
+
+#: What a browser asks for when it loads the page (index.html's links and app.js's first calls).
+PAGE = ("/", "/static/style.css", "/vendor/plotly.min.js", "/static/app.js", "/static/lab.js",
+        "/static/favicon.svg", "/api/config?lang=en", "/api/period_curve")
+STUDENTS = 30
+#: A browser's connections to one server (Chromium's and Firefox's per-host limit), kept
+#: alive after the page load: the class holds STUDENTS * 6 = 180 at once.
+BROWSER_CONNECTIONS = 6
+
+
+def change(student: int) -> list[tuple[str, dict[str, str]]]:
+    """What the page asks for on a change (app.js ``update``) with a comparison method and
+    the second pendulum shown: /api/simulate for a and b, /api/motion; each student their own amplitude."""
+    q = {"length": "3.5", "amplitude": str(100 + student), "unit": "deg", "g": "9.80665", "t_max": "20", "lang": "en"}
+    sim = q | {"step": "1e-3", "points": "3000"}
+    return [("/api/simulate", sim | {"method": "taylor2"}), ("/api/simulate", sim | {"method": "rk4"}),
+            ("/api/motion", q)]
+
+
+async def classroom(base: str, address: str) -> list[tuple[str, object]]:
+    """STUDENTS browsers from ``address`` load the page, then all change a value at once, twice:
+    (what was asked, the answer or the exception's class name), every request's."""
+    limits = httpx.Limits(max_connections=BROWSER_CONNECTIONS, max_keepalive_connections=BROWSER_CONNECTIONS,
+                          keepalive_expiry=300)
+    browsers = [httpx.AsyncClient(base_url=base, limits=limits, timeout=httpx.Timeout(120.0),
+                                  transport=httpx.AsyncHTTPTransport(local_address=address, limits=limits))
+                for _ in range(STUDENTS)]
+
+    async def ask(browser: httpx.AsyncClient, path: str, params: dict | None = None) -> tuple[str, object]:
+        try:
+            return path, await browser.get(path, params=params)
+        except httpx.HTTPError as exc:  # closed by the server
+            return path, type(exc).__name__
+
+    out: list[tuple[str, object]] = []
+    async with contextlib.AsyncExitStack() as stack:
+        for b in browsers:
+            await stack.enter_async_context(b)
+        out += await asyncio.gather(*[ask(b, p) for b in browsers for p in PAGE])
+        for _ in range(2):  # over the connections the page loads keep alive
+            out += await asyncio.gather(*[ask(b, p, q) for i, b in enumerate(browsers) for p, q in change(i)])
+    return out
+
+
+def run_class(base: str, address: str) -> list[tuple[str, object]]:
+    return asyncio.run(asyncio.wait_for(classroom(base, address), timeout=300))  # a hang guard
+
+
+def failed(answers: list[tuple[str, object]]) -> list[tuple[str, object]]:
+    return [(p, a if isinstance(a, str) else a.status_code) for p, a in answers
+            if isinstance(a, str) or a.status_code != 200]
+
+
+def check_class(answers: list[tuple[str, object]]) -> None:
+    """Every answer 200, each simulation's period mpmath's for its student's amplitude."""
+    assert len(answers) == STUDENTS * (len(PAGE) + 2 * 3)
+    assert not failed(answers), failed(answers)[:10]
+    for _path, r in answers:
+        assert isinstance(r, httpx.Response)
+        if r.url.path in ("/api/simulate", "/api/motion"):
+            period = r.json()["period"]
+            period = period if r.url.path == "/api/motion" else period["period"]
+            assert period == pytest.approx(ellipk_period(3.5, math.radians(int(r.url.params["amplitude"]))), rel=1e-13)
+        elif r.url.path == "/vendor/plotly.min.js":
+            assert len(r.content) > 1_000_000
+
+
+@pytest.mark.slow
+def test_a_class_behind_one_address_gets_every_answer(server):
+    # 30 browsers behind one NAT address: 180 connections at once, every request answered.
+    check_class(run_class(server, "127.0.0.90"))
+
+
+@pytest.mark.slow
+def test_the_same_class_under_a_cap_of_32_loses_requests():
+    # The premise of the test above: the class holds more connections than the old cap
+    # (--per-address 32) allows, and the server closes some of its requests' connections.
+    with serve_in_child(args=("--per-address", "32")) as base:
+        answers = run_class(base, "127.0.0.91")
+        assert len(failed(answers)) > 0
+        assert httpx.get(base + "/api/config", timeout=30).status_code == 200
+
+
+def stalled_from(port: int, address: str) -> socket.socket:
+    """A connection from ``address`` that sends half a request line."""
+    s = socket.create_connection(("127.0.0.1", port), timeout=10, source_address=(address, 0))
+    s.sendall(b"GET / HTTP/1.1\r\nHost: loc")
+    return s
+
+
+@pytest.mark.slow
+def test_a_class_is_answered_beside_an_address_holding_hundreds_of_stalled_connections():
+    """One address opens 300 connections that never finish their headers (the header timeout
+    put out of the way): under the default caps it holds its own places only, at most
+    per_address_cap of them, and a class from another address gets every answer."""
+    cap = web_server.per_address_cap(web_server.connection_cap())
+    assert STUDENTS * BROWSER_CONNECTIONS < cap < 300
+    with uvicorn_in_thread(header_timeout=600) as port:
+        stalled = [stalled_from(port, "127.0.0.92") for _ in range(300)]
+        try:
+            check_class(run_class(f"http://127.0.0.1:{port}", "127.0.0.93"))
+            # The stalled address's own new request is answered: it closes its oldest waiting one.
+            with httpx.Client(transport=httpx.HTTPTransport(local_address="127.0.0.92"), timeout=30) as own:
+                assert own.get(f"http://127.0.0.1:{port}/api/config").status_code == 200
+            # Of the 301, at most `cap` held at once: the 300 - cap + 1 oldest closed by the
+            # server (all watched at once; the 30 s bound is a hang guard).
+            open_ones, deadline = list(stalled), time.monotonic() + 30.0
+            while len(open_ones) > cap - 1 and time.monotonic() < deadline:
+                readable, _, _ = select.select(open_ones, [], [], max(0.0, deadline - time.monotonic()))
+                open_ones = [s for s in open_ones if s not in readable or not closed_by_server(s, 0.1)]
+            assert len(open_ones) <= cap - 1, f"{300 - len(open_ones)} of 300 closed"
+            assert all(s in open_ones for s in stalled[-(cap - 1):])  # the newest ones kept theirs
+        finally:
+            for s in stalled:
+                s.close()
