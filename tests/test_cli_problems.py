@@ -171,6 +171,25 @@ def test_quadrature_json(cli):
     assert "5(a)" in cli("quadrature", "--n", "1e1,1e2", "--substitution").out
 
 
+def test_quadrature_prints_a_substituted_error_at_the_rounding_floor_as_the_floor(cli):
+    """5(d)'s substituted column: an error at or below 128 u T^ is rounding, printed as the
+    bound it is under (as the report and problem5.py print it), which the true error of the
+    substituted S_n against mpmath's period respects; an error above it keeps its digits."""
+    data = cli("quadrature", "--substitution", "--json").json
+    lines = cli("quadrature", "--substitution").out.splitlines()
+    rows = [re.findall(r"<= \S+|\S+", line) for line in lines[2:2 + len(data["rows"])]]
+    with mpmath.workdps(50):
+        true = 2 * mpmath.pi * mpmath.sqrt(mpmath.mpf("3.5") / mpmath.mpf(G_TEXT)) / mpmath.agm(
+            1, mpmath.cos(mpmath.mpf(data["amplitude"]) / 2))
+        for row, r in zip(rows, data["rows"]):
+            assert int(row[0]) == r["n"]
+            if r["substitution_error"] <= data["rounding_floor"]:
+                assert row[-1].startswith("<= ") and abs(mpmath.mpf(r["substitution_estimate"]) - true) <= mpmath.mpf(row[-1][3:])
+            else:
+                assert row[-1] == f"{r['substitution_error']:.3e}"
+    assert sum(row[-1].startswith("<= ") for row in rows) == 4  # n = 100 to 1e5 at 4pi/5
+
+
 def test_quadrature_near_pi_says_t_hat_is_off_and_measures_the_substitution_against_t(cli):
     # pi - 1e-15: 7 iterations of (7) have not converged. Reference: mpmath's elliptic K at
     # 60 digits from the amplitude's exact double, rounded to a double.

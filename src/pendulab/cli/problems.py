@@ -7,7 +7,7 @@ from fractions import Fraction
 import click
 
 from ..core import cases, inputs
-from ..core.digits import shown, with_error
+from ..core.digits import bound, shown, with_error
 from ..core.errors import InputError
 from ..numerics.newton import Condition, U
 from ..numerics.period import FIXED_ITERATIONS_ULPS
@@ -266,8 +266,10 @@ def quadrature(length, amplitude, ns, substitution, graded, g, as_json):
     for row in r.rows:
         rate = f"{row.rate:6.3f}" if row.rate is not None else f"{'':>6}"
         line = f"{row.n:>10} {row.estimate:>20.15g} {row.error:>11.3e} {rate}"
-        if substitution:
-            line += f" {row.substitution_estimate:>20.15g} {row.substitution_error:>11.3e}"
+        if substitution:  # an error at the rounding floor is rounding: the floor it is under, as the report
+            sub = (f"<= {bound(r.rounding_floor, 1, sci=True)}" if row.substitution_error <= r.rounding_floor
+                   else f"{row.substitution_error:.3e}")
+            line += f" {row.substitution_estimate:>20.15g} {sub:>11}"
         click.echo(line)
     click.echo(f"5(a): {answer_5a}")
     click.echo(rate_text)
