@@ -8,6 +8,7 @@ import contextlib
 import math
 import select
 import socket
+import sys
 import threading
 import time
 
@@ -210,6 +211,15 @@ def test_no_numeric_overflow_is_a_500(client, route, data):
     assert r.status_code in (200, 422), (route, q, r.text[:300])
     if r.status_code == 422:
         assert r.json()["error"]["field"] in (*FIELDS[route], "query", "unit")
+
+
+def test_a_sample_count_beyond_the_doubles_is_still_an_answer(client):
+    """Hypothesis found it: g = t_max = 2.7e-215, a period of 1.2e108 s sampled every 2.7e-215 s,
+    1e322 samples a period (beyond the doubles; JSON has no infinity): the largest double."""
+    q = {"length": "1", "amplitude": "0.0", "g": "2.735055730101642e-215", "t_max": "2.735055730101642e-215"}
+    r = client.get("/api/motion", params=q)
+    assert r.status_code == 200, r.text[:300]
+    assert r.json()["frames"]["per_period"] == sys.float_info.max
 
 
 def test_the_motion_to_t_max_1e308_is_a_422_naming_t_max(client):
