@@ -100,7 +100,7 @@ def test_a_body_that_trickles_past_the_body_timeout_is_closed():
 
     port = free_port()
     config = uvicorn.Config(_Reads(), host="127.0.0.1", port=port, loop="asyncio", log_level="warning",
-                            http=server.protocol(body_timeout=0.5))
+                            http=server.protocol(body_timeout=1.5))  # 1.5 s: room for a loaded machine
     srv = uvicorn.Server(config)
     t = threading.Thread(target=srv.run, daemon=True)
     t.start()

@@ -47,10 +47,14 @@ def test_both_photogates_read_the_exact_periods_at_4x_on_a_throttled_cpu(browser
     context, pg = _open(browser, server, TWO, throttle=6, width=width, height=height)
     try:
         t1, t2 = ellipk_period(1, math.radians(30)), ellipk_period(1, math.radians(80))
-        readings = []
-        for _ in range(3):  # 1.5 s apart, 6 s of motion at 4x: each reading is of later passes
+        readings = [(_gate(pg, "gate", when=True), _gate(pg, "gate2", when=True))]
+        for _ in range(2):  # each next reading once both gates have timed a later pass
+            # (a condition, not a fixed wait: on a throttled and loaded machine 1.5 s can be
+            # a few frames; 60 s is a hang guard)
+            pg.wait_for_function("([a, b]) => parseFloat(document.getElementById('gate').dataset.t) !== a"
+                                 " && parseFloat(document.getElementById('gate2').dataset.t) !== b",
+                                 arg=[readings[-1][0][1], readings[-1][1][1]], timeout=60_000)
             readings.append((_gate(pg, "gate", when=True), _gate(pg, "gate2", when=True)))
-            pg.wait_for_timeout(1500)
         for (r1, _), (r2, _) in readings:
             assert abs(r1 - t1) < 1e-3 and abs(r2 - t2) < 1e-3, (readings, t1, t2)
         # Three different passes per gate: the readings are new data, not one reading shown
@@ -136,11 +140,17 @@ def test_the_stopwatch_runs_in_simulation_time(browser, server):
     context, pg = _open(browser, server, "/?length=1&amplitude=30&unit=deg&step=1e-3&t_max=60&speed=4")
     try:
         t0 = pg.evaluate("anim.t")
+        wall = pg.evaluate("performance.now()")
         pg.click("#watch-start")
-        pg.wait_for_timeout(1500)
+        # Until the animation is 6 s of the simulation's time past the click (1.5 s at 4x
+        # here): a condition, not a fixed wait, for a loaded machine's late clicks and frames
+        # (30 s: a hang guard).
+        pg.wait_for_function("(t1) => anim.t - t1 > 6", arg=pg.evaluate("anim.t"), timeout=30_000)
         pg.click("#watch-start")
+        wall = (pg.evaluate("performance.now()") - wall) / 1000
         shown = float(pg.locator("#watch").text_content().split()[0])
-        assert shown > 3.0  # 1.5 s at 4x: about 6 s of the simulation's time
+        assert shown > 3.0  # about 6 s of the simulation's time
+        assert shown > 1.5 * wall, (shown, wall)  # not the wall clock's seconds: at 4x, about 4x those
         assert shown <= pg.evaluate("anim.t") - t0 + 0.01
     finally:
         context.close()
