@@ -130,19 +130,13 @@ def test_a_lan_address_is_exposed():
 
 # ------------------------------------------------------------------ incomplete headers, connection cap
 
-#: The guarded protocol class each server of :func:`uvicorn_in_thread` runs, by its port (a
-#: test watches its connections there).
-PROTOCOLS: dict[int, type] = {}
-
-
 @contextlib.contextmanager
 def uvicorn_in_thread(**limits_):
     """The real app on uvicorn with the guarded protocol (these limits), in a thread, on 127.0.0.1."""
     import uvicorn
 
     port = free_port()
-    PROTOCOLS[port] = server.protocol(**limits_)
-    config = uvicorn.Config(create_app(), host="127.0.0.1", port=port, http=PROTOCOLS[port],
+    config = uvicorn.Config(create_app(), host="127.0.0.1", port=port, http=server.protocol(**limits_),
                             loop="asyncio", log_level="warning")
     srv = uvicorn.Server(config)
     t = threading.Thread(target=srv.run, daemon=True)
@@ -156,7 +150,6 @@ def uvicorn_in_thread(**limits_):
     finally:
         srv.should_exit = True
         t.join(10)
-        PROTOCOLS.pop(port, None)
 
 
 def half_request(port: int, text: bytes = b"GET / HTTP/1.1\r\nHost: loc") -> socket.socket:
@@ -381,11 +374,7 @@ def test_a_client_that_stops_reading_is_dropped():
     with uvicorn_in_thread(stall_timeout=1.0) as port:
         s = socket.create_connection(("127.0.0.1", port), timeout=10)
         s.sendall(f"GET /api/trajectory.csv?{q} HTTP/1.1\r\nHost: localhost\r\n\r\n".encode())
-        # Until the server has dropped it (a condition, not a fixed 4 s: a slow machine takes
-        # longer to fill the buffers that start the stall timer; 120 s: a hang guard).
-        open_ones = PROTOCOLS[port].by_client  # type: ignore[attr-defined]
-        until(lambda: any(open_ones.values()))
-        until(lambda: not any(open_ones.values()))
+        time.sleep(4.0)
         got = 0
         with contextlib.suppress(ConnectionResetError):
             while chunk := s.recv(1 << 16):
