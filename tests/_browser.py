@@ -71,8 +71,16 @@ def launched() -> Iterator[Any]:
             browser.close()
 
 
+#: Playwright's wait for each action and condition on a test's page (its own default is 30 s):
+#: a hang guard, not a speed claim; a machine three times slower than ours, loaded, and a
+#: first request that compiles must not reach it.
+HANG_GUARD_MS = 90_000
+
+
 def record_errors(pg: Any) -> Any:
-    """``pg`` with ``pg.errors``: the page's uncaught exceptions and console errors, as they come."""
+    """``pg`` with ``pg.errors``: the page's uncaught exceptions and console errors, as they
+    come; each of its waits bounded by :data:`HANG_GUARD_MS`."""
+    pg.set_default_timeout(HANG_GUARD_MS)
     pg.errors = []
     pg.on("pageerror", lambda e: pg.errors.append(str(e)))
     pg.on("console", lambda m: pg.errors.append(m.text) if m.type == "error" else None)

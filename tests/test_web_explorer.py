@@ -31,7 +31,7 @@ def _open(browser, server, query: str, width: int, height: int):
     pg = record_errors(context.new_page())
     pg.goto(f"{server}/?{query}")
     pg.wait_for_function("document.body.dataset.shown === '1' && "
-                         "document.querySelectorAll('.js-plotly-plot .main-svg').length >= 7", timeout=60_000)
+                         "document.querySelectorAll('.js-plotly-plot .main-svg').length >= 7", timeout=90_000)
     return context, pg
 
 
@@ -42,7 +42,7 @@ def _errors(pg) -> list[str]:
 
 def _bad_input(pg, field: str = "length", bad: str = "0") -> None:
     pg.fill(f"#{field}", bad)
-    pg.wait_for_selector(f"#{field}-error:not([hidden])", timeout=30_000)
+    pg.wait_for_selector(f"#{field}-error:not([hidden])", timeout=90_000)
 
 
 # ---------------------------------------------------------------- axe-core
@@ -159,7 +159,7 @@ def test_the_portuguese_page_has_no_english_word_left(browser, server, width, he
     context, pg = _open(browser, server, "lang=pt" + query, width, height)
     try:
         if "rk4" in query:  # the flags, in Portuguese
-            pg.wait_for_function("document.querySelector('#flags p[data-kind=energy-decay]')", timeout=30_000)
+            pg.wait_for_function("document.querySelector('#flags p[data-kind=energy-decay]')", timeout=90_000)
         pg.wait_for_timeout(1500)  # the photogate's first readings
         texts = {"page": pg.evaluate(SHOWN_TEXT)}
         for field, bad in (("length", "0"), ("step", "x"), ("amplitude", "200"), ("t_max", "-1"), ("g", "x")):
@@ -168,7 +168,7 @@ def test_the_portuguese_page_has_no_english_word_left(browser, server, width, he
             texts[f"{field} = {bad}"] = pg.evaluate(SHOWN_TEXT)
             if field != "g":  # the last one stays, read below
                 pg.fill(f"#{field}", good)
-                pg.wait_for_selector(f"#{field}-error", state="hidden", timeout=30_000)
+                pg.wait_for_selector(f"#{field}-error", state="hidden", timeout=90_000)
         left = {k: _english_left(v) for k, v in texts.items()}
         assert all(v == [] for v in left.values()), left
         assert "não é permitido" in pg.locator("#g-error").text_content()
@@ -215,7 +215,7 @@ def test_the_projector_is_large(browser, server):
     context, pg = _open(browser, server, "view=projector&" + "length=1&amplitude=30&unit=deg&speed=4", 1920, 1080)
     try:
         assert _box(pg, "#canvas")["width"] >= 960
-        pg.wait_for_function("document.getElementById('gate').dataset.period", timeout=30_000)  # a reading shown
+        pg.wait_for_function("document.getElementById('gate').dataset.period", timeout=90_000)  # a reading shown
         for sel in ("#period-agm", "#strip-period", "#strip-estimate", "#gate"):
             b = _box(pg, sel)
             assert b["visible"] and b["font"] >= 24 and b["bottom"] <= 1080, (sel, b)
@@ -274,7 +274,7 @@ def test_the_page_prints_only_the_estimates_right_digits(browser, server, lang):
     pg.on("response", lambda r: answers.append(r) if "/api/simulate" in r.url else None)
     try:
         pg.goto(f"{server}/?lang={lang}&length=1&amplitude=2&unit=rad&step=0.05&method=verlet")
-        pg.wait_for_function("document.body.dataset.shown === '1'", timeout=60_000)
+        pg.wait_for_function("document.body.dataset.shown === '1'", timeout=90_000)
         e = answers[-1].json()["period"]["estimate"]
         assert e["errors"]["cubic"] > 1e-4  # the case: three digits right, not twelve
 
@@ -306,7 +306,7 @@ def test_the_portuguese_page_writes_and_reads_a_decimal_comma(browser, server):
         mpmath.mp.dps = 30
         t = 2 * mpmath.pi * mpmath.sqrt(mpmath.mpf("1.5") / mpmath.mpf("9.80665")) / mpmath.agm(1, mpmath.cos(mpmath.pi / 12))
         want = mpmath.nstr(t, 12, strip_zeros=False).replace(".", ",")
-        pg.wait_for_function("(w) => document.getElementById('period-agm').textContent === w", arg=want, timeout=60_000)
+        pg.wait_for_function("(w) => document.getElementById('period-agm').textContent === w", arg=want, timeout=90_000)
         assert "length=1.5" in pg.url and pg.locator("#length-error").is_hidden()
         assert float(pg.input_value("#length-slider")) == pytest.approx(math.log10(1.5), abs=0.05)
         assert _errors(pg) == []

@@ -30,11 +30,11 @@ def _open(browser, server, url, throttle=None, width=1400, height=1000):
     if throttle:  # a slow machine: Chromium's CPU throttling (the devtools protocol)
         context.new_cdp_session(pg).send("Emulation.setCPUThrottlingRate", {"rate": throttle})
     pg.goto(server + url)
-    pg.wait_for_function("typeof sims !== 'undefined' && sims.a !== null", timeout=60_000)
+    pg.wait_for_function("typeof sims !== 'undefined' && sims.a !== null", timeout=90_000)
     return context, pg
 
 
-def _gate(pg, which, timeout=30_000, when=False):
+def _gate(pg, which, timeout=90_000, when=False):
     """The period a photogate shows (and the time of the pass that ended it), read at one instant."""
     got = pg.wait_for_function(f"(e => e.dataset.period ? [e.dataset.period, e.dataset.t] : null)"
                                f"(document.getElementById('{which}'))", timeout=timeout).json_value()
@@ -50,10 +50,10 @@ def test_both_photogates_read_the_exact_periods_at_4x_on_a_throttled_cpu(browser
         readings = [(_gate(pg, "gate", when=True), _gate(pg, "gate2", when=True))]
         for _ in range(2):  # each next reading once both gates have timed a later pass
             # (a condition, not a fixed wait: on a throttled and loaded machine 1.5 s can be
-            # a few frames; 60 s is a hang guard)
+            # a few frames; 90 s is a hang guard)
             pg.wait_for_function("([a, b]) => parseFloat(document.getElementById('gate').dataset.t) !== a"
                                  " && parseFloat(document.getElementById('gate2').dataset.t) !== b",
-                                 arg=[readings[-1][0][1], readings[-1][1][1]], timeout=60_000)
+                                 arg=[readings[-1][0][1], readings[-1][1][1]], timeout=90_000)
             readings.append((_gate(pg, "gate", when=True), _gate(pg, "gate2", when=True)))
         for (r1, _), (r2, _) in readings:
             assert abs(r1 - t1) < 1e-3 and abs(r2 - t2) < 1e-3, (readings, t1, t2)
@@ -144,8 +144,8 @@ def test_the_stopwatch_runs_in_simulation_time(browser, server):
         pg.click("#watch-start")
         # Until the animation is 6 s of the simulation's time past the click (1.5 s at 4x
         # here): a condition, not a fixed wait, for a loaded machine's late clicks and frames
-        # (30 s: a hang guard).
-        pg.wait_for_function("(t1) => anim.t - t1 > 6", arg=pg.evaluate("anim.t"), timeout=30_000)
+        # (90 s: a hang guard).
+        pg.wait_for_function("(t1) => anim.t - t1 > 6", arg=pg.evaluate("anim.t"), timeout=90_000)
         pg.click("#watch-start")
         wall = (pg.evaluate("performance.now()") - wall) / 1000
         shown = float(pg.locator("#watch").text_content().split()[0])
