@@ -51,10 +51,11 @@ def _num(x: float) -> float | None:
     return float(x) if math.isfinite(x) else None
 
 
-def _count(x: float) -> float:
-    """A count of samples a period, one beyond the doubles (a period of 1e107 s sampled every
-    1e-215 s) as the largest double: JSON has no infinity, and the page reads it as plenty."""
-    return min(float(x), sys.float_info.max)
+def _count(period: float, spacing: float) -> float:
+    """Samples a period, ``period / spacing``; a count beyond the doubles (a period of 1e107 s
+    sampled every 1e-215 s) as the largest double: JSON has no infinity, and the page reads
+    it as plenty. Divided as Python floats: their overflow is inf, with no numpy warning."""
+    return min(float(period) / float(spacing), sys.float_info.max) if spacing > 0 else sys.float_info.max
 
 
 def period_view(length: float, amplitude: float, g: float, per: Periods | None = None) -> dict[str, Any]:
@@ -265,7 +266,7 @@ def simulate_view(params: Mapping[str, str]) -> dict[str, Any]:
         "omega": finite_list(sim["omega"]),
         "exact": {"t": ex_t.tolist(), "theta": finite_list(ex_th)},
         "error": {"t": e_t[keep].tolist(), "theta": finite_list(err[keep]), "samples": len(e_idx),
-                  "per_period": _count(sim["period"] / (h * (e_idx[1] - e_idx[0]))) if len(e_idx) > 1 else None},
+                  "per_period": _count(sim["period"], h * (e_idx[1] - e_idx[0])) if len(e_idx) > 1 else None},
         "energy": {"t": finite_list(h * sim["energy_idx"]), "drift": finite_list(sim["energy"])},
         "phase": {
             "theta": sampling.gapped(sim["phase_theta"], sim["phase_idx"], sim["phase_stride"]),
@@ -275,7 +276,7 @@ def simulate_view(params: Mapping[str, str]) -> dict[str, Any]:
         },
         "frames": {
             "t": f_t.tolist(), "theta": finite_list(sim["frame_theta"]), "omega": finite_list(sim["frame_omega"]),
-            "per_period": _count(sim["period"] / (h * (f_idx[1] - f_idx[0]))) if len(f_idx) > 1 else None,
+            "per_period": _count(sim["period"], h * (f_idx[1] - f_idx[0])) if len(f_idx) > 1 else None,
         },
         "exact_frames": {"theta": finite_list(ex_frames[0]), "omega": finite_list(ex_frames[1])},
         "exact_phase": {"theta": finite_list(orbit[0]), "omega": finite_list(orbit[1])},
@@ -421,7 +422,7 @@ def motion_view(params: Mapping[str, str]) -> dict[str, Any]:
     with np.errstate(invalid="ignore", over="ignore"):  # sqrt(g/l) t beyond the doubles: null
         m = exact_motion(p["length"], p["amplitude"], t, p["g"])
     return view | {"frames": {"t": t.tolist(), "theta": finite_list(m.theta), "omega": finite_list(m.omega),
-                              "per_period": _count(view["period"] / (t[1] - t[0]))}}
+                              "per_period": _count(view["period"], t[1] - t[0])}}
 
 
 #: The approximations the T(alpha)/T0 curve draws (keys of :data:`pendulab.numerics.approximations.FORMULAS`).
