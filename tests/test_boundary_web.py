@@ -41,10 +41,10 @@ def endpoints() -> dict[str, list[str]]:
 
 def test_openapi_lists_every_parameter():
     found = endpoints()
-    assert set(found["/api/period"]) == {"length", "amplitude", "unit", "g"}
+    assert set(found["/api/period"]) == {"length", "amplitude", "unit", "g", "lang"}
     assert set(found["/api/simulate"]) == {"length", "amplitude", "unit", "g", "step", "t_max", "method", "points",
                                            "omega0", "damping", "drag", "mass", "lang"}
-    assert set(found["/api/trajectory.csv"]) == set(found["/api/simulate"]) - {"lang"} | {"columns"}  # no words
+    assert set(found["/api/trajectory.csv"]) == set(found["/api/simulate"]) | {"columns"}  # lang: its refusals' words
     assert set(found["/api/motion"]) == {"length", "amplitude", "unit", "g", "t_max", "lang"}
     assert set(found["/api/convergence"]) == {"length", "amplitude", "unit", "g", "method", "steps", "lang"}
     assert set(found["/api/config"]) == {"lang"}

@@ -19,6 +19,7 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 
 from pendulab.web import create_app
+from test_boundary_web import endpoints
 
 STATIC = Path(__file__).resolve().parents[1] / "src" / "pendulab" / "web" / "static"
 
@@ -175,3 +176,52 @@ def test_english_refuses_a_decimal_comma_and_a_list_keeps_its_commas(client):
     assert r.status_code == 422 and r.json()["error"]["value"] == "1,5"
     q = {"length": "1", "amplitude": "0.5", "steps": "0.1,0.05", "lang": "pt"}
     assert [row["step"] for row in client.get("/api/convergence", params=q).json()["rows"]] == [0.1, 0.05]
+
+
+def _words(texts) -> set[str]:
+    return {w.lower() for t in texts for w in re.findall(r"[A-Za-z]{3,}", t if isinstance(t, str) else json.dumps(t))}
+
+
+def _all(lang: str) -> dict[str, object]:
+    return json.loads(resources.files("pendulab.report").joinpath(f"{lang}.json").read_text(encoding="utf-8"))
+
+
+#: English words of the page's catalogue that no Portuguese entry holds: none may reach a
+#: Portuguese refusal (method names, units and symbols are in both, so are not here).
+ENGLISH = _words(EN.values()) - _words(_all("pt").values())
+SPOKEN = endpoints()
+WORDED = sorted(r for r, names in SPOKEN.items() if "lang" in names)
+BAD = st.one_of(
+    st.sampled_from(["", "0", "-1", "x", "nan", "inf", "1e400", "1e-320", "1e300", "1e6", "1e-9", "2.7e-215",
+                     "3.2", "200deg", "4pi/5", "0,5", "0.0001,1e-9", "abc,1", ",", "1,,2", "rk9", "taylor:99",
+                     "9" * 40, "1" * 300]),
+    st.floats(allow_nan=True, allow_infinity=True).map(repr),
+    st.text("0123456789.,-+eEpi/degmsc ", max_size=12),
+)
+
+
+def test_every_route_with_words_takes_lang():
+    """The routes whose answers or refusals have words (all but the fixed T(alpha)/T0 curve)."""
+    assert set(SPOKEN) - set(WORDED) == {"/api/period_curve"}
+    assert {"smallest", "must", "such", "fits", "with", "between"} <= ENGLISH
+
+
+@settings(max_examples=250, deadline=None)
+@given(st.sampled_from([r for r in WORDED if len(SPOKEN[r]) > 1]), st.data())
+def test_a_portuguese_refusal_has_no_english_word(client, route, data):
+    """Any field of any route given a bad value with ``lang=pt``: a 422 (never a 500) whose
+    message and allowed range hold no English word of the catalogue (the echoed value apart).
+    The probe that found ``0.0001 (smallest)``, ``such that the period search ... fits`` and
+    English refusals from ``/api/period`` and ``/api/trajectory.csv``."""
+    names = [n for n in SPOKEN[route] if n != "lang"]
+    field = data.draw(st.sampled_from(names))
+    value = data.draw(BAD)
+    q = {"length": "1", "amplitude": "0.5", "step": "0.01", "t_max": "2", "points": "64"}
+    q = {k: v for k, v in q.items() if k in names} | {field: value, "lang": "pt"}
+    r = client.get(route, params=q)
+    assert r.status_code in (200, 422), (route, q, r.status_code)
+    if r.status_code == 422:
+        err = r.json()["error"]
+        said = err["message"].replace(f"= {err['value']} ", "= ", 1)
+        assert said.startswith(f"{PT.get('field.' + err['field'], err['field'])}"), said
+        assert not (_words([said, err["allowed"]]) & ENGLISH), (route, q, said)

@@ -265,9 +265,10 @@ def create_app(allowed_hosts: Iterable[str] = guard.LOCAL_HOSTS) -> FastAPI:
 
     @app.get("/api/period", response_model=models.PeriodAnswer, responses=bad)
     async def period(length: Length = None, amplitude: Amplitude = None, unit: Unit = None,
-                     g: Gravity = None) -> Response:
+                     g: Gravity = None, lang: Lang = None) -> Response:
         # The periods of one pendulum (periods(), a fraction of a millisecond), answered on the event loop.
-        return light(views.period_endpoint, {"length": length, "amplitude": amplitude, "unit": unit, "g": g})
+        return light(views.period_endpoint, {"length": length, "amplitude": amplitude, "unit": unit, "g": g,
+                                             "lang": lang})
 
     @app.get("/api/simulate", response_model=models.SimulateAnswer, responses=bad)
     async def simulate(request: Request, length: Length = None, amplitude: Amplitude = None, unit: Unit = None, g: Gravity = None,
@@ -304,14 +305,16 @@ def create_app(allowed_hosts: Iterable[str] = guard.LOCAL_HOSTS) -> FastAPI:
     async def trajectory_csv(length: Length = None, amplitude: Amplitude = None, unit: Unit = None,
                              g: Gravity = None, step: Step = None, t_max: TMax = None, method: MethodName = None,
                              points: Points = None, columns: Columns = None, omega0: Omega0 = None,
-                             damping: Damping = None, drag: Drag = None, mass: Mass = None) -> Response:
-        params = {"length": length, "amplitude": amplitude, "unit": unit, "g": g, "step": step, "t_max": t_max,
-                  "method": method, "points": points, "columns": columns, "omega0": omega0, "damping": damping,
-                  "drag": drag, "mass": mass}
+                             damping: Damping = None, drag: Drag = None, mass: Mass = None,
+                             lang: Lang = None) -> Response:
+        params = _given({"length": length, "amplitude": amplitude, "unit": unit, "g": g, "step": step, "t_max": t_max,
+                         "method": method, "points": points, "columns": columns, "omega0": omega0,
+                         "damping": damping, "drag": drag, "mass": mass, "lang": lang})
         try:
-            blocks, name = views.trajectory_csv(_given(params))
-        except InputError as exc:
-            return JSONResponse(error_body(exc), status_code=422)
+            blocks, name = views.trajectory_csv(params)
+        except InputError as exc:  # the CSV has no words; its refusal is in the language asked
+            return JSONResponse(error_body(parameters.as_typed(exc, params), words.safe_language(params)),
+                                status_code=422)
 
         async def stream() -> AsyncIterator[str]:
             # One block per slot: a slow download never holds a slot while the client reads.

@@ -310,6 +310,7 @@ def trajectory_csv(params: Mapping[str, str]) -> tuple[Iterator[str], str]:
     text blocks, each computed when asked for, so the server holds one block at a time.
     """
     p = parameters.simulation(params)
+    words.language(params)  # judged, as every route judges it
     points = parameters.points(params, limits.MAX_CSV_ROWS, limits.MAX_CSV_ROWS)
     columns = parameters.text(params, "columns", "state").strip().lower()
     if columns not in CSV_COLUMNS:
@@ -479,6 +480,7 @@ def config_view(params: Mapping[str, str] | None = None) -> dict[str, Any]:
 def period_endpoint(params: Mapping[str, str]) -> dict[str, Any]:
     """``GET /api/period``: the AGM and small-angle periods of a pendulum (:func:`period_view`)."""
     p = parameters.pendulum(params)
+    words.language(params)
     return period_view(p["length"], p["amplitude"], p["g"])
 
 

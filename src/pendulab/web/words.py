@@ -72,8 +72,12 @@ def message(exc: InputError, lang: str) -> str:
         return str(exc)
     name = catalogue(lang).get(f"field.{exc.name}", exc.name)
     where = name if exc.index is None else f"{name}[{', '.join(map(str, exc.index))}]"
-    value = shown_value(exc.value)  # as typed; only a stand-in such as (missing) is translated
-    value = dict(_phrases(lang)).get(value, value)
+    value = shown_value(exc.value)  # as typed; only a stand-in such as (missing) is translated,
+    value = dict(_phrases(lang)).get(value, value)  # or a note after it, such as " (smallest)"
+    for en, there in _phrases(lang):
+        if en.startswith(" (") and value.endswith(en):
+            value = value[: -len(en)] + there
+            break
     return say("error.not-allowed", lang, field=where, value=value, allowed=allowed(exc.allowed, lang))
 
 

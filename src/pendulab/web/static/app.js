@@ -146,13 +146,13 @@ function apiAmplitude() {
   return state.unit === "deg" && PLAIN_NUMBER.test(a) ? a + "deg" : a;
 }
 
-function apiQuery(which, extra = {}, withWords = true) {
+function apiQuery(which, extra = {}) {
   const method = which === "b" ? state.method2 : state.method;
   const step = which === "b" && state.step2 ? state.step2 : state.step;
   const q = new URLSearchParams({
     length: state.length, amplitude: state.amplitude, unit: state.unit, g: state.g, method, step, t_max: state.t_max, ...extra,
   });
-  if (withWords) q.set("lang", lang);  // the flags' words; the CSV has none
+  q.set("lang", lang);  // the flags' words, and a refusal's (the CSV itself has none)
   if (state.omega0) q.set("omega0", state.omega0);
   if (window.lab) window.lab.query(q, which);  // damping, drag, mass; Planet X's g
   return q.toString();
@@ -219,10 +219,10 @@ async function update() {
   clearError();
   sims = { a: ra.body, b: rb ? rb.body : null, second: rs ? rs.body : null };
   sims.a.amplitudeQuery = amplitudeQuery;
-  $("csv").href = "/api/trajectory.csv?" + apiQuery("a", { columns: "all" }, false);
+  $("csv").href = "/api/trajectory.csv?" + apiQuery("a", { columns: "all" });
   $("csv").setAttribute("aria-disabled", "false");
   $("csv2").hidden = !sims.b;
-  if (sims.b) $("csv2").href = "/api/trajectory.csv?" + apiQuery("b", { columns: "all" }, false);
+  if (sims.b) $("csv2").href = "/api/trajectory.csv?" + apiQuery("b", { columns: "all" });
   const s = sims.a;
   const thinned = s.thinning === "none" ? word("page.every-step") : word("page.columns", { columns: count(s.columns) });
   $("status").textContent = word("page.steps-of", { n: count(s.n_steps), method: s.input.method, thinned });
