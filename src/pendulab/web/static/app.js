@@ -852,6 +852,7 @@ function renderAnimNote() {
 
 // ---------- energies of the first pendulum now, in m g l: K = l θ′²/(2g), U = 1 − cos θ ----------
 // Here, not from the server: the bars need K and U apart at each frame's interpolated state, the stream has only E − E₀ at its samples (K + U − 1 is engine.fold.energy).
+// The page's one energy formula: lab.js's energies in J are these times m g l.
 function energyOf(st, s) {
   if (!st || st.theta === null || st.omega === null) return null;
   const K = st.omega * st.omega * s.input.length / (2 * s.input.g), U = 1 - Math.cos(st.theta);

@@ -115,17 +115,16 @@ window.lab = (() => {
     $("watch").textContent = `${local(w.elapsed.toFixed(2))} s`;
   }
 
-  // ---------- the energies in J: K = m l^2 theta'^2/2, U = m g l (1 - cos theta), the heat E0 - E ----------
+  // ---------- the energies in J: the page's energyOf (in m g l) times m g l; the heat E0 - E ----------
   function energies() {
     const s = sims.a, box = $("lab-energy");
     if (!s) return;
     const { length: l, g, mass: m, amplitude: a } = s.input;
     const damped = s.input.damping || s.input.drag;
     // theta'' of the undamped pendulum between the samples; linear theta' where it is damped.
-    const st = stateAt(s.frames, anim.t, s.frames.theta, s.frames.omega, damped ? null : g / l);
-    const w0 = s.launch ? s.launch.omega0 : 0;
-    const E0 = m * g * l * (1 - Math.cos(a)) + 0.5 * m * l * l * w0 * w0;
-    const K = st ? 0.5 * m * l * l * st.omega * st.omega : null, U = st ? m * g * l * (1 - Math.cos(st.theta)) : null;
+    const st = energyOf(stateAt(s.frames, anim.t, s.frames.theta, s.frames.omega, damped ? null : g / l), s);
+    const mgl = m * g * l, E0 = mgl * energyOf({ theta: a, omega: s.launch ? s.launch.omega0 : 0 }, s).E;
+    const K = st ? mgl * st.K : null, U = st ? mgl * st.U : null;
     const rows = { K, U, E: K === null ? null : K + U, Q: K === null ? null : E0 - (K + U) };
     const top = 1.1 * Math.max(E0, ...Object.values(rows).filter((x) => x !== null));
     for (const [k, x] of Object.entries(rows)) {
