@@ -9,6 +9,8 @@ the server still answers afterwards, and no numpy RuntimeWarning is raised on th
 from __future__ import annotations
 
 import math
+import re
+from pathlib import Path
 
 import pytest
 from fastapi.testclient import TestClient
@@ -148,3 +150,19 @@ def test_a_run_without_an_estimate_is_an_answer_with_its_status(client, amplitud
     assert (period["estimate"] is None) == (period["status"] != "found") == (period["reason"] is not None)
     if period["reason"] is not None:
         assert "\n" not in period["reason"] and "--" not in period["reason"]
+
+
+def test_the_docs_name_every_parameter_of_every_route():
+    """docs/explorer.md's API tables list each route's query parameters as the OpenAPI schema
+    has them, over the rows that name the route (``as above``: the row before's too)."""
+    doc = (Path(__file__).resolve().parents[1] / "docs" / "explorer.md").read_text(encoding="utf-8")
+    listed: dict[str, set[str]] = {}
+    before: set[str] = set()
+    for routes, params in re.findall(r"^\| ((?:`/api/[^`]+`(?:, )?)+) \|([^|]*)\|", doc, flags=re.M):
+        bare = re.sub(r"\([^)]*\)", "", params)  # not the notes: (default 2000), (`state` or `all`)
+        names = {n for chunk in re.findall(r"`([^`]+)`", bare) for n in re.split(r",\s*", chunk)}
+        names |= before if params.strip().startswith("as above") else set()
+        for route in re.findall(r"`(/api/[^`]+)`", routes):
+            listed.setdefault(route, set()).update(names)
+        before = names
+    assert listed == {route: set(names) for route, names in endpoints().items()}
