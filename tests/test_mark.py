@@ -421,7 +421,7 @@ def test_template_on_a_bad_stdout_is_one_line(tmp_path, redirect, reason):
 
 def test_an_untrusted_3b_return_is_marked_and_said_untrusted(tmp_path, capsys):
     """A sum of 1115 (l = 1.4953487812): problem3.py's h = 0.2 simulation returns, at a bracket
-    26 % of T off, which the engine calls untrusted (the report's and key's 3(b)). A student
+    27 % of T off, which the engine calls untrusted (the report's and key's 3(b)). A student
     who answers as the program does is right, and the mark says "untrusted" beside 3(b)'s
     outcome and bracket, in the text (right answers are otherwise not listed), --json and pt."""
     from pendulab.report.mark import why

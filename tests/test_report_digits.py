@@ -24,8 +24,8 @@ Problems 1, 2, 4 and 5 do not depend on the group: their numbers are checked for
 against truths computed once (a test checks every group prints the same for them). The pt
 report prints the same numbers (checked for the example group). Not checked here: 3(b)'s
 footnote's amplitude limit of 7 iterations and its distance to pi (the engine's search,
-``fixed_iterations_limit``) and the engine's numbers of an untrusted h = 0.2 return, which
-none of the six groups has (``test_report_sentences``).
+``fixed_iterations_limit``, checked in ``test_report``). The engine's numbers of an untrusted
+h = 0.2 return, which none of the six groups has, are checked for a seventh (a sum of 1115).
 """
 from __future__ import annotations
 
@@ -595,3 +595,24 @@ def test_the_check_can_fail(docs, students):
         assert_bound("0.02736", mpmath.mpf("0.027362"))
     with pytest.raises(AssertionError):  # a mark of rounding noise below the value's size is caught
         assert_right_or_under("≤ 1 × 10#super[−15]", mpmath.mpf("-1.2e-15"))
+
+
+def test_an_untrusted_return_prints_only_right_digits():
+    """3(b)'s untrusted sentence (a sum of 1115, l = 1.4953487812): the engine's estimate p(0)
+    of the h = 0.2 return and how far it is off the period, against (3) and the inverse cubic
+    in mpmath; more than a quarter period, as the sentence says."""
+    v = sections((1115,), ["problem 3"]).values
+    assert "p3b.cubic" in v, v.get("p3b.trust")  # the sentence of an estimate off the period
+    with mpmath.workdps(DPS):
+        alpha = 4 * mpmath.pi / 5
+    t = period_mp(v["p3b.l"], alpha)
+    _, z2, j, _ = taylor_mp(v["p3b.l"], alpha, "0.2", steps=int(4 * t / mp("0.2")) + 1, stop=True)
+    with mpmath.workdps(DPS):
+        h = mp("0.2")
+        nodes = [j - 1, j, j + 1, j + 2, j - 2]
+        _, p0, _ = cubic_mp([z2[k] for k in nodes], [k * h for k in nodes])
+        off_by = abs(p0 - t) / t
+        assert_exact(v["p3b.j"], j)
+        assert_right(v["p3b.cubic"], p0)
+        assert v["p3b.off"].endswith("%") and off_by > 0.25
+        assert_right(v["p3b.off"][:-1], 100 * off_by)

@@ -90,7 +90,7 @@ class Problem3(Result):
     plot_status : str
         The ``h = 0.2`` search's status (``PeriodSearch.status``, lower case): ``"untrusted"``
         where it returns but near the separatrix cannot be trusted (a sum of 1115:
-        ``l = 1.4953487812``, the return 26 % of ``T`` off); ``"found"`` for a trusted return.
+        ``l = 1.4953487812``, the return 27 % of ``T`` off); ``"found"`` for a trusted return.
     """
 
     figure3: Trajectory

@@ -279,7 +279,7 @@ def _ratio(ratio: float, error: float, limit: float) -> str:
 def _trust(doc: Doc, length: float, alpha: float, h: float, search: float, outcome: str) -> None:
     """3(b), beyond the coursework: the engine's period search judges the h = 0.2 return. Near
     the separatrix it can be untrusted (a sum of 1115 gives l = 1.4953487812: the return at
-    [5, 5.2] is 26 % of T off); the sentence after the bracket says so, with the search's numbers."""
+    [5, 5.2] is 27 % of T off); the sentence after the bracket says so, with the search's numbers."""
     from ..core.methods import Status
     from ..numerics.crossing import search_period
 
