@@ -139,6 +139,29 @@ def test_connections_per_client_are_capped_and_the_oldest_waiting_one_goes():
             s.close()
 
 
+def test_a_connection_kept_alive_idle_makes_room_for_a_new_one():
+    """A class's browsers keep their connections alive, idle, after the page loads: at the
+    per-address cap a new connection closes the oldest idle one (its browser opens another
+    when it needs one) instead of being closed itself. The 60 s keep-alive: none times out."""
+    import http.client
+
+    with uvicorn_in_thread(keep_alive=60, max_per_client=4) as port:
+        idle = []
+        for _ in range(4):
+            c = http.client.HTTPConnection("127.0.0.1", port, timeout=10)
+            c.request("GET", "/api/config")
+            r = c.getresponse()
+            r.read()
+            assert r.status == 200 and not r.will_close
+            idle.append(c)
+        r = httpx.get(f"http://127.0.0.1:{port}/api/config", timeout=10)
+        assert r.status_code == 200
+        assert closed_by_server(idle[0].sock, 10.0)  # the oldest; the 10 s a hang guard
+        assert not any(closed_by_server(c.sock, 0.2) for c in idle[1:])
+        for c in idle:
+            c.close()
+
+
 def test_a_flood_of_parameters_is_refused_before_parsing(client):
     flood = "&".join(["a"] * 10_000)  # 10,000 parameters in 20 KB
     r = client.get("/api/simulate?" + flood)

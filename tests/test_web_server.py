@@ -131,13 +131,14 @@ def test_a_lan_address_is_exposed():
 # ------------------------------------------------------------------ incomplete headers, connection cap
 
 @contextlib.contextmanager
-def uvicorn_in_thread(**limits_):
-    """The real app on uvicorn with the guarded protocol (these limits), in a thread, on 127.0.0.1."""
+def uvicorn_in_thread(keep_alive: float = 5, **limits_):
+    """The real app on uvicorn with the guarded protocol (these limits), in a thread, on 127.0.0.1;
+    a kept-alive connection idle for ``keep_alive`` s is closed (the server's 5 s)."""
     import uvicorn
 
     port = free_port()
     config = uvicorn.Config(create_app(), host="127.0.0.1", port=port, http=server.protocol(**limits_),
-                            loop="asyncio", log_level="warning")
+                            loop="asyncio", log_level="warning", timeout_keep_alive=keep_alive)
     srv = uvicorn.Server(config)
     t = threading.Thread(target=srv.run, daemon=True)
     t.start()

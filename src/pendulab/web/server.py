@@ -17,7 +17,8 @@ descriptors until none is left. :class:`GuardedH11` bounds that:
   descriptor limit less a batch of accepts (:func:`accept_batch`), and at most
   :func:`per_address_cap` from one address (a classroom behind one NAT address shares
   them); a new one past either cap closes the oldest connection (of that address, for its
-  cap) still waiting for its headers or body, or is itself closed when every such
+  cap) still waiting for its headers or body, or kept alive idle after its answer (a
+  browser opens another when it needs one), or is itself closed when every such
   connection is busy. A client that opens hundreds of connections and trickles bytes into
   them holds its own places only.
 
@@ -103,8 +104,8 @@ class GuardedH11(H11Protocol):
     stall_timeout: float = STALL_TIMEOUT
     max_connections: int = MAX_CONNECTIONS
     max_per_client: int = MAX_PER_CLIENT
-    #: Connections still waiting for their request's headers or body, oldest first (one
-    #: list per class: :func:`protocol` gives each server its own).
+    #: Connections still waiting for their request's headers or body, or idle between two
+    #: requests, oldest first (one list per class: :func:`protocol` gives each server its own).
     waiting: ClassVar[dict[GuardedH11, float]] = {}
     #: The open connections of each client address.
     by_client: ClassVar[dict[str, set[GuardedH11]]] = {}
@@ -168,6 +169,12 @@ class GuardedH11(H11Protocol):
                 self._wait_for_body()
             else:
                 self._body_done()
+
+    def on_response_complete(self) -> None:
+        super().on_response_complete()
+        if not self.transport.is_closing() and self.conn.their_state is h11.IDLE:
+            # Kept alive, idle until its next request: a place the caps may take back.
+            self.waiting[self] = time.monotonic()
 
     def pause_writing(self) -> None:
         super().pause_writing()
