@@ -163,11 +163,11 @@ def change(student: int) -> list[tuple[str, dict[str, str]]]:
 async def classroom(base: str, address: str) -> list[tuple[str, object]]:
     """STUDENTS browsers from ``address`` load the page, then all change a value at once, twice:
     (what was asked, the answer or the exception's class name), every request's."""
-    # Kept alive 4 s: below the server's 5 s, so that no browser sends a request on a
+    # Kept alive 1 s less than the server keeps them, so that no browser sends a request on a
     # connection the server is closing for idleness (a race a browser survives by sending it
     # again; httpx does not retry, and the caps, not that race, are what this class tests).
     limits = httpx.Limits(max_connections=BROWSER_CONNECTIONS, max_keepalive_connections=BROWSER_CONNECTIONS,
-                          keepalive_expiry=4)
+                          keepalive_expiry=web_server.KEEP_ALIVE - 1)
     browsers = [httpx.AsyncClient(base_url=base, limits=limits, timeout=httpx.Timeout(120.0),
                                   transport=httpx.AsyncHTTPTransport(local_address=address, limits=limits))
                 for _ in range(STUDENTS)]

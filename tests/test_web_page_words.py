@@ -25,9 +25,14 @@ from test_boundary_web import endpoints
 STATIC = Path(__file__).resolve().parents[1] / "src" / "pendulab" / "web" / "static"
 
 
+def _all(lang: str) -> dict[str, object]:
+    """The whole catalogue of ``lang``."""
+    return json.loads(resources.files("pendulab.report").joinpath(f"{lang}.json").read_text(encoding="utf-8"))
+
+
 def _catalogue(lang: str) -> dict[str, str]:
-    text = resources.files("pendulab.report").joinpath(f"{lang}.json").read_text(encoding="utf-8")
-    return {k[4:]: v for k, v in json.loads(text).items() if k.startswith("web.")}
+    """Its ``web.`` entries, by their names without ``web.``."""
+    return {k[4:]: v for k, v in _all(lang).items() if k.startswith("web.")}
 
 
 EN, PT = _catalogue("en"), _catalogue("pt")
@@ -181,10 +186,6 @@ def test_english_refuses_a_decimal_comma_and_a_list_keeps_its_commas(client):
 
 def _words(texts) -> set[str]:
     return {w.lower() for t in texts for w in re.findall(r"[A-Za-z]{3,}", t if isinstance(t, str) else json.dumps(t))}
-
-
-def _all(lang: str) -> dict[str, object]:
-    return json.loads(resources.files("pendulab.report").joinpath(f"{lang}.json").read_text(encoding="utf-8"))
 
 
 #: English words of the page's catalogue that no Portuguese entry holds: none may reach a

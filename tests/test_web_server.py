@@ -134,9 +134,9 @@ def test_a_lan_address_is_exposed():
 # ------------------------------------------------------------------ incomplete headers, connection cap
 
 @contextlib.contextmanager
-def uvicorn_in_thread(keep_alive: float = 5, **limits_):
+def uvicorn_in_thread(keep_alive: int = server.KEEP_ALIVE, **limits_):
     """The real app on uvicorn with the guarded protocol (these limits), in a thread, on 127.0.0.1;
-    a kept-alive connection idle for ``keep_alive`` s is closed (the server's 5 s)."""
+    a kept-alive connection idle for ``keep_alive`` s is closed (the server's by default)."""
     import uvicorn
 
     port = free_port()

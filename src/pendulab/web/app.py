@@ -41,7 +41,7 @@ import gzip
 import logging
 import os
 import threading
-from collections.abc import AsyncIterator, Callable, Iterable
+from collections.abc import AsyncIterator, Callable, Iterable, Mapping
 from concurrent.futures import ThreadPoolExecutor
 from pathlib import Path
 from typing import Annotated, Any
@@ -104,6 +104,13 @@ def error_body(exc: InputError, lang: str = "en") -> dict[str, Any]:
     value = exc.value if isinstance(exc.value, (int, float, str)) or exc.value is None else str(exc.value)
     return {"error": {"field": exc.name, "value": value, "allowed": words.allowed(exc.allowed, lang),
                       "message": words.message(exc, lang)}}
+
+
+def refusal(exc: InputError | ArithmeticError, params: Mapping[str, str]) -> JSONResponse:
+    """The 422 of a bad input (its value as the query typed it) or of an overflow, in the
+    request's language."""
+    bad = parameters.as_typed(exc, params) if isinstance(exc, InputError) else overflow(exc)
+    return JSONResponse(error_body(bad, words.safe_language(params)), status_code=422)
 
 
 def _encode(body: Any) -> bytes:
@@ -236,11 +243,8 @@ def create_app(allowed_hosts: Iterable[str] = guard.LOCAL_HOSTS) -> FastAPI:
             try:
                 with stop_when(stop):
                     return Response(_encode(call(params)), media_type="application/json")
-            except InputError as exc:
-                return JSONResponse(error_body(parameters.as_typed(exc, params), words.safe_language(params)),
-                                    status_code=422)
-            except (OverflowError, FloatingPointError) as exc:
-                return JSONResponse(error_body(overflow(exc), words.safe_language(params)), status_code=422)
+            except (InputError, OverflowError, FloatingPointError) as exc:
+                return refusal(exc, params)
             except Stopped:
                 return Response(status_code=499)  # nobody reads it
 
@@ -251,11 +255,8 @@ def create_app(allowed_hosts: Iterable[str] = guard.LOCAL_HOSTS) -> FastAPI:
         params = _given(query)
         try:
             return JSONResponse(call(params))
-        except InputError as exc:
-            return JSONResponse(error_body(parameters.as_typed(exc, params), words.safe_language(params)),
-                                status_code=422)
-        except (OverflowError, FloatingPointError) as exc:
-            return JSONResponse(error_body(overflow(exc), words.safe_language(query)), status_code=422)
+        except (InputError, OverflowError, FloatingPointError) as exc:
+            return refusal(exc, params)
 
     bad: dict[int | str, dict[str, Any]] = {422: {"model": models.ErrorAnswer, "description": "a bad parameter, named"}}
 
@@ -313,8 +314,7 @@ def create_app(allowed_hosts: Iterable[str] = guard.LOCAL_HOSTS) -> FastAPI:
         try:
             blocks, name = views.trajectory_csv(params)
         except InputError as exc:  # the CSV has no words; its refusal is in the language asked
-            return JSONResponse(error_body(parameters.as_typed(exc, params), words.safe_language(params)),
-                                status_code=422)
+            return refusal(exc, params)
 
         async def stream() -> AsyncIterator[str]:
             # One block per slot: a slow download never holds a slot while the client reads.

@@ -11,8 +11,8 @@ descriptors until none is left. :class:`GuardedH11` bounds that:
 - **body timeout**: a request body (which :mod:`pendulab.web.guard` refuses at once, a
   client may still send one) not complete within :data:`BODY_TIMEOUT` seconds closes the
   connection;
-- **idle timeout**: a kept-alive connection with no new request for 5 s is closed (uvicorn's
-  ``timeout_keep_alive``);
+- **idle timeout**: a kept-alive connection with no new request for :data:`KEEP_ALIVE`
+  seconds is closed (uvicorn's ``timeout_keep_alive``);
 - **connection cap**: at most :func:`connection_cap` connections, below the process's
   descriptor limit less a batch of accepts (:func:`accept_batch`), and at most
   :func:`per_address_cap` from one address (a classroom behind one NAT address shares
@@ -42,9 +42,11 @@ from uvicorn.protocols.http.h11_impl import H11Protocol
 HEADER_TIMEOUT = 10.0
 #: Seconds a request's body may take once its headers are in.
 BODY_TIMEOUT = 10.0
+#: Seconds a kept-alive connection may wait idle for its next request.
+KEEP_ALIVE = 5
 #: At most this many connections from one address by default (``pendulab serve --per-address``):
 #: half of :data:`MAX_CONNECTIONS`. A browser opens up to 6 per server and keeps them alive
-#: (5 s here) after a page load, so a class of 30 behind one NAT address holds 180 at once:
+#: (:data:`KEEP_ALIVE` here) after a page load, so a class of 30 behind one NAT address holds 180 at once:
 #: 256 fits 42 such browsers, and leaves the other half of the places to every other address.
 MAX_PER_CLIENT = 256
 #: Seconds a client may read nothing of an answer before it is dropped.
@@ -264,7 +266,7 @@ def run(app: Any, host: str, port: int, before: Callable[[], None] | None = None
     import uvicorn
 
     config = uvicorn.Config(app, host=host, port=port, http=protocol(**limits), loop="asyncio",
-                            log_level="warning", timeout_keep_alive=5, backlog=accept_batch())
+                            log_level="warning", timeout_keep_alive=KEEP_ALIVE, backlog=accept_batch())
     server = uvicorn.Server(config)
 
     async def main() -> None:
